@@ -1,0 +1,53 @@
+// Full NORM against Hertz theory: a sphere on a plane and an ellipsoidal contact, steel
+// on steel, on refined grids. Prints one row per grid with the relative differences.
+//
+//   hertz_comparison [--quick]
+#include <fastnorm/fastnorm.hpp>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+namespace {
+
+void compare(const char* shape, double radius_x, double radius_y, double force, const std::vector<int>& sizes) {
+  const fastnorm::Material<> steel(2.1e11, 0.3);
+  const auto hertz = fastnorm::hertz_from_force(radius_x, radius_y, steel.combined_modulus(), force);
+  std::printf("\n%s: R_x = %.3f m, R_y = %.3f m, Fn = %.0f N; Hertz a = %.4f mm, b = %.4f mm, p0 = %.1f MPa, "
+              "approach = %.3f um\n",
+              shape, radius_x, radius_y, force, hertz.semi_axis_x * 1e3, hertz.semi_axis_y * 1e3,
+              hertz.max_pressure * 1e-6, hertz.approach * 1e6);
+  std::printf("%7s %9s %13s %10s %13s %10s %10s %9s %8s\n", "grid", "ncontact", "approach_um", "err",
+              "pmax_MPa", "err", "area_err", "iters", "solve_s");
+  const double pi = 3.14159265358979323846;
+  for (int n : sizes) {
+    const auto grid = fastnorm::hertz_grid(hertz, n, 1.25);
+    const fastnorm::NormSolver<> solver(grid, steel);
+    const auto start = std::chrono::steady_clock::now();
+    const auto solution = solver.solve(fastnorm::hertz_undeformed_distance(grid, radius_x, radius_y),
+                                       fastnorm::Loading<>::force(force));
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const double area = static_cast<double>(solution.contact_count()) * grid.element_area();
+    std::printf("%3dx%-3d %9ld %13.4f %10.2e %13.2f %10.2e %10.2e %9d %8.3f  %s\n", n, n,
+                static_cast<long>(solution.contact_count()), solution.approach * 1e6,
+                solution.approach / hertz.approach - 1, solution.pressure.maxCoeff() * 1e-6,
+                solution.pressure.maxCoeff() / hertz.max_pressure - 1,
+                area / (pi * hertz.semi_axis_x * hertz.semi_axis_y) - 1, solution.iterations, seconds,
+                fastnorm::to_string(solution.status));
+  }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const bool quick = argc > 1 && std::string(argv[1]) == "--quick";
+  const std::vector<int> sizes = quick ? std::vector<int>{11, 21} : std::vector<int>{21, 41, 61, 81};
+  std::printf("fastnorm %d.%d.%d: full NORM against Hertz theory (steel on steel, E = 210 GPa, nu = 0.3)\n",
+              FASTNORM_VERSION_MAJOR, FASTNORM_VERSION_MINOR, FASTNORM_VERSION_PATCH);
+  std::printf("grids cover +-1.25 semi-axes; err = numerical / Hertz - 1\n");
+  compare("sphere on plane", 0.3, 0.3, 5e4, sizes);
+  compare("ellipsoidal contact", 0.46, 0.3, 1e5, sizes);
+  return 0;
+}

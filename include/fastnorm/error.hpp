@@ -1,0 +1,42 @@
+#pragma once
+/// @file error.hpp
+/// The two error channels of fastnorm (see CONTRIBUTING in README):
+/// - `FASTNORM_CHECK` guards user input. It is always on and throws
+///   `fastnorm::invalid_argument` with a message that names the argument.
+/// - `FASTNORM_ASSERT` guards internal invariants and is compiled out under `NDEBUG`.
+
+#include <cassert>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+
+namespace fastnorm {
+
+/// Thrown for bad input: non-positive sizes or moduli, NaN/Inf data, mismatched sizes.
+class invalid_argument : public std::invalid_argument {
+ public:
+  using std::invalid_argument::invalid_argument;
+};
+
+namespace detail {
+
+/// Builds "what (got value)" for error messages; full precision for floating values.
+template <typename Value>
+std::string describe(const std::string& what, const Value& value) {
+  std::ostringstream out;
+  out.precision(17);
+  out << what << " (got " << value << ")";
+  return out.str();
+}
+
+}  // namespace detail
+}  // namespace fastnorm
+
+/// Throws fastnorm::invalid_argument("fastnorm: " + message) unless `condition` holds.
+#define FASTNORM_CHECK(condition, message)                                         \
+  do {                                                                             \
+    if (!(condition)) throw ::fastnorm::invalid_argument("fastnorm: " + std::string(message)); \
+  } while (false)
+
+/// Internal invariant; compiled out under NDEBUG.
+#define FASTNORM_ASSERT(condition) assert(condition)

@@ -1,0 +1,13 @@
+#pragma once
+/// @file fastnorm.hpp
+/// Umbrella header: everything public in fastnorm.
+
+#include "fastnorm/version.hpp"
+#include "fastnorm/error.hpp"
+#include "fastnorm/grid.hpp"
+#include "fastnorm/material.hpp"
+#include "fastnorm/influence.hpp"
+#include "fastnorm/solution.hpp"
+#include "fastnorm/norm_solver.hpp"
+#include "fastnorm/hertz.hpp"
+#include "fastnorm/case_file.hpp"

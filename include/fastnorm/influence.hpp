@@ -1,0 +1,168 @@
+#pragma once
+/// @file influence.hpp
+/// Influence coefficients of the elastic half-space for constant pressure on the
+/// rectangles of a regular grid (Love 1929), stored as a two-level Toeplitz table
+/// (docs/design.md §2, docs/kernel.md).
+
+#include <Eigen/Core>
+#include <cmath>
+#include <cstdlib>
+#include <type_traits>
+#include <vector>
+
+#include "fastnorm/error.hpp"
+#include "fastnorm/grid.hpp"
+#include "fastnorm/material.hpp"
+
+namespace fastnorm {
+
+namespace detail {
+
+/// The precision the kernel is evaluated in: at least double. The four-term
+/// difference of docs/kernel.md Eq. (K1) cancels about log10(r/dx)+2 digits far away,
+/// which float cannot spare; the table is rounded to Scalar after.
+template <typename Scalar>
+using KernelWork = std::conditional_t<(sizeof(Scalar) < sizeof(double)), double, Scalar>;
+
+/// I(X, Y) = ∫₀^X ∫₀^Y dx dy / sqrt(x² + y²) = X·asinh(Y/|X|) + Y·asinh(X/|Y|),
+/// odd in each argument; a term is 0 when its |·| is 0 (docs/kernel.md Eq. (K2)).
+template <typename Work>
+Work love_primitive(Work X, Work Y) {
+  Work value = 0;
+  if (X != 0) value += X * std::asinh(Y / std::abs(X));
+  if (Y != 0) value += Y * std::asinh(X / std::abs(Y));
+  return value;
+}
+
+}  // namespace detail
+
+/// Normal surface displacement (m) of both bodies together at offset (x, y) (m) from
+/// the centre of a rectangle of half-sizes a × b (m) carrying unit pressure (1 Pa):
+///
+///     C(x, y) = [I(x+a, y+b) − I(x−a, y+b) − I(x+a, y−b) + I(x−a, y−b)] / (π E*)
+///
+/// @param combined_modulus E* (Pa), see Material::combined_modulus()
+/// @note See docs/design.md §2 and docs/kernel.md Eq. (K1).
+template <typename Scalar>
+Scalar love_coefficient(Scalar x, Scalar y, Scalar a, Scalar b, Scalar combined_modulus) {
+  using Work = detail::KernelWork<Scalar>;
+  const Work xw = x, yw = y, aw = a, bw = b;
+  const Work sum = detail::love_primitive(xw + aw, yw + bw) - detail::love_primitive(xw - aw, yw + bw) -
+                   detail::love_primitive(xw + aw, yw - bw) + detail::love_primitive(xw - aw, yw - bw);
+  const Work pi = Work(3.14159265358979323846264338327950288L);
+  return static_cast<Scalar>(sum / (pi * Work(combined_modulus)));
+}
+
+/// The influence coefficients C_kl of a grid: displacement at the centre of element k
+/// (m) due to unit pressure (1 Pa) on element l.
+///
+/// C_kl depends only on the offset (|i_k − i_l|, |j_k − j_l|): the kernel is even in x
+/// and in y, so the (2mx−1)(2my−1) Toeplitz table of offsets folds to the mx × my
+/// table of non-negative offsets that is stored here (docs/kernel.md §2). The N × N
+/// matrix is never formed; `dense_block` fills the sub-block a direct solver needs.
+///
+/// **Example**
+/// @code
+/// fastnorm::Grid<> grid(40, 40, 2e-4, 2e-4);
+/// fastnorm::InfluenceTable<> table(grid, fastnorm::Material<>(2.1e11, 0.3));
+/// double self = table(0, 0);        // C_00
+/// double neighbour = table(0, 1);   // C_01 = C(dx, 0)
+/// @endcode
+template <typename Scalar = double>
+class InfluenceTable {
+  static_assert(std::is_floating_point_v<Scalar>,
+                "fastnorm::InfluenceTable needs a floating-point Scalar");
+
+ public:
+  using Index = Eigen::Index;
+  using Vector = Eigen::Matrix<Scalar, Eigen::Dynamic, 1>;
+  using Matrix = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;
+
+  InfluenceTable(const Grid<Scalar>& grid, const Material<Scalar>& material)
+      : grid_(grid), combined_modulus_(material.combined_modulus()), table_(grid.mx(), grid.my()) {
+    const Scalar a = grid.dx() / 2, b = grid.dy() / 2;
+    for (Index dj = 0; dj < grid.my(); ++dj) {
+      for (Index di = 0; di < grid.mx(); ++di) {
+        table_(di, dj) = love_coefficient<Scalar>(static_cast<Scalar>(di) * grid.dx(),
+                                                  static_cast<Scalar>(dj) * grid.dy(), a, b,
+                                                  combined_modulus_);
+      }
+    }
+  }
+
+  const Grid<Scalar>& grid() const { return grid_; }
+  /// E* used for the table (Pa).
+  Scalar combined_modulus() const { return combined_modulus_; }
+
+  /// C for an offset of (di, dj) elements; either sign.
+  Scalar at_offset(Index di, Index dj) const { return table_(std::abs(di), std::abs(dj)); }
+
+  /// C_kl: displacement at element k due to unit pressure on element l (m/Pa).
+  Scalar operator()(Index k, Index l) const {
+    return at_offset(grid_.i_of(k) - grid_.i_of(l), grid_.j_of(k) - grid_.j_of(l));
+  }
+
+  /// The folded table, table(di, dj) = C(di·dx, dj·dy), di < mx, dj < my.
+  const Matrix& table() const { return table_; }
+
+  /// Dense symmetric block C_II for the elements `set` (each < grid.size()).
+  Matrix dense_block(const std::vector<Index>& set) const { return dense_block(set, set); }
+
+  /// Dense block C_RS: rows the elements `rows`, columns the elements `columns`.
+  Matrix dense_block(const std::vector<Index>& rows, const std::vector<Index>& columns) const {
+    Matrix block(static_cast<Index>(rows.size()), static_cast<Index>(columns.size()));
+    for (Index c = 0; c < block.cols(); ++c) {
+      const Index ic = grid_.i_of(columns[static_cast<std::size_t>(c)]);
+      const Index jc = grid_.j_of(columns[static_cast<std::size_t>(c)]);
+      for (Index r = 0; r < block.rows(); ++r) {
+        const Index k = rows[static_cast<std::size_t>(r)];
+        block(r, c) = at_offset(grid_.i_of(k) - ic, grid_.j_of(k) - jc);
+      }
+    }
+    return block;
+  }
+
+  /// Displacements u_t = Σ_s C_ts p_s (m) at the elements `targets` due to pressures
+  /// `source_pressure` (Pa) on the elements `sources`.
+  Vector displacement(const std::vector<Index>& targets, const std::vector<Index>& sources,
+                      const Eigen::Ref<const Vector>& source_pressure) const {
+    FASTNORM_CHECK(source_pressure.size() == static_cast<Index>(sources.size()),
+                   "displacement: source_pressure must have one value per source element");
+    Vector result = Vector::Zero(static_cast<Index>(targets.size()));
+    for (std::size_t s = 0; s < sources.size(); ++s) {
+      const Scalar pressure = source_pressure(static_cast<Index>(s));
+      if (pressure == 0) continue;
+      const Index is = grid_.i_of(sources[s]), js = grid_.j_of(sources[s]);
+      for (std::size_t t = 0; t < targets.size(); ++t) {
+        result(static_cast<Index>(t)) +=
+            at_offset(grid_.i_of(targets[t]) - is, grid_.j_of(targets[t]) - js) * pressure;
+      }
+    }
+    return result;
+  }
+
+  /// Displacements at every element due to a pressure on the whole grid: C p (m).
+  /// Cost: grid.size() × (non-zero pressures).
+  Vector displacement(const Eigen::Ref<const Vector>& pressure) const {
+    FASTNORM_CHECK(pressure.size() == grid_.size(),
+                   detail::describe("displacement: pressure must have grid.size() values",
+                                    pressure.size()));
+    std::vector<Index> loaded, all(static_cast<std::size_t>(grid_.size()));
+    for (Index k = 0; k < grid_.size(); ++k) {
+      all[static_cast<std::size_t>(k)] = k;
+      if (pressure(k) != 0) loaded.push_back(k);
+    }
+    Vector loaded_pressure(static_cast<Index>(loaded.size()));
+    for (std::size_t s = 0; s < loaded.size(); ++s) {
+      loaded_pressure(static_cast<Index>(s)) = pressure(loaded[s]);
+    }
+    return displacement(all, loaded, loaded_pressure);
+  }
+
+ private:
+  Grid<Scalar> grid_;
+  Scalar combined_modulus_;
+  Matrix table_;
+};
+
+}  // namespace fastnorm

@@ -1,0 +1,67 @@
+#pragma once
+/// @file material.hpp
+/// Elastic constants of the two bodies and their combined modulus E* (docs/design.md §2).
+
+#include <cmath>
+#include <string>
+#include <type_traits>
+
+#include "fastnorm/error.hpp"
+
+namespace fastnorm {
+
+/// Young's modulus (Pa) and Poisson's ratio of the two bodies in contact.
+///
+/// Class invariant: both moduli positive and finite; both ratios in (−1, 0.5].
+template <typename Scalar = double>
+class Material {
+  static_assert(std::is_floating_point_v<Scalar>,
+                "fastnorm::Material needs a floating-point Scalar");
+
+ public:
+  /// Both bodies of the same material.
+  /// @param young_modulus E (Pa, > 0)
+  /// @param poisson_ratio ν in (−1, 0.5]
+  /// @throws fastnorm::invalid_argument naming the offending argument
+  Material(Scalar young_modulus, Scalar poisson_ratio)
+      : Material(young_modulus, poisson_ratio, young_modulus, poisson_ratio) {}
+
+  /// Two different bodies.
+  /// @throws fastnorm::invalid_argument naming the offending argument
+  Material(Scalar young_modulus_1, Scalar poisson_ratio_1, Scalar young_modulus_2,
+           Scalar poisson_ratio_2)
+      : young_modulus_{young_modulus_1, young_modulus_2},
+        poisson_ratio_{poisson_ratio_1, poisson_ratio_2} {
+    for (int body = 0; body < 2; ++body) {
+      const std::string suffix = "_" + std::to_string(body + 1);
+      FASTNORM_CHECK(std::isfinite(young_modulus_[body]) && young_modulus_[body] > 0,
+                     detail::describe("material: young_modulus" + suffix +
+                                          " must be positive and finite (Pa)",
+                                      young_modulus_[body]));
+      FASTNORM_CHECK(poisson_ratio_[body] > Scalar(-1) && poisson_ratio_[body] <= Scalar(0.5),
+                     detail::describe("material: poisson_ratio" + suffix +
+                                          " must lie in (-1, 0.5]",
+                                      poisson_ratio_[body]));
+    }
+  }
+
+  /// Young's modulus of body 1 or 2 (Pa).
+  Scalar young_modulus(int body = 1) const { return young_modulus_[body - 1]; }
+  /// Poisson's ratio of body 1 or 2.
+  Scalar poisson_ratio(int body = 1) const { return poisson_ratio_[body - 1]; }
+
+  /// Combined modulus E* (Pa): 1/E* = (1 − ν1²)/E1 + (1 − ν2²)/E2 (docs/design.md §2).
+  Scalar combined_modulus() const {
+    Scalar compliance = 0;
+    for (int body = 0; body < 2; ++body) {
+      compliance += (1 - poisson_ratio_[body] * poisson_ratio_[body]) / young_modulus_[body];
+    }
+    return 1 / compliance;
+  }
+
+ private:
+  Scalar young_modulus_[2];
+  Scalar poisson_ratio_[2];
+};
+
+}  // namespace fastnorm

@@ -1,0 +1,79 @@
+#pragma once
+/// @file solution.hpp
+/// How a normal problem is loaded, and what every solver returns.
+
+#include <Eigen/Core>
+#include <cmath>
+#include <string>
+
+#include "fastnorm/error.hpp"
+
+namespace fastnorm {
+
+/// How the bodies are pressed together (docs/design.md §1).
+enum class Control {
+  approach,  ///< h already contains the rigid approach; solve as it stands
+  force,     ///< h_k = h0_k − δ with δ unknown and dx·dy·Σp = Fn given
+};
+
+/// The loading of one normal problem.
+template <typename Scalar = double>
+struct Loading {
+  Control control = Control::approach;
+  /// Total normal force Fn (N); used, and required > 0, in force control only.
+  Scalar normal_force = 0;
+
+  static Loading approach() { return Loading{Control::approach, Scalar(0)}; }
+  /// @throws fastnorm::invalid_argument if Fn is not positive and finite
+  static Loading force(Scalar normal_force) {
+    FASTNORM_CHECK(std::isfinite(normal_force) && normal_force > 0,
+                   detail::describe("loading: normal_force must be positive and finite (N)",
+                                    normal_force));
+    return Loading{Control::force, normal_force};
+  }
+};
+
+/// How a solve ended. Bad input is not a status: it throws fastnorm::invalid_argument.
+enum class Status {
+  converged,        ///< the contact set is stable and the Signorini conditions hold
+  no_contact,       ///< approach control with every gap positive: zero pressure
+  iteration_limit,  ///< the active-set loop reached Options::max_iterations
+  numerical_issue,  ///< a factorisation failed (matrix not positive definite)
+};
+
+inline const char* to_string(Status status) {
+  switch (status) {
+    case Status::converged: return "converged";
+    case Status::no_contact: return "no contact";
+    case Status::iteration_limit: return "iteration limit";
+    case Status::numerical_issue: return "numerical issue";
+  }
+  return "unknown";
+}
+
+/// The answer of a normal-contact solver on a grid.
+template <typename Scalar = double>
+struct Solution {
+  using Vector = Eigen::Matrix<Scalar, Eigen::Dynamic, 1>;
+  using Mask = Eigen::Array<bool, Eigen::Dynamic, 1>;
+
+  Status status = Status::converged;
+  /// Pressure on every element of the grid (Pa), ≥ 0; zero outside contact.
+  Vector pressure;
+  /// Elements in the final contact set.
+  Mask in_contact;
+  /// dx·dy·Σp (N).
+  Scalar normal_force = 0;
+  /// Rigid approach δ subtracted from the given h (m): found in force control; 0 in
+  /// approach control, where h already contains it.
+  Scalar approach = 0;
+  /// Active-set iterations (linear solves).
+  int iterations = 0;
+  /// What happened, in words.
+  std::string message;
+
+  Eigen::Index contact_count() const { return in_contact.count(); }
+  bool ok() const { return status == Status::converged || status == Status::no_contact; }
+};
+
+}  // namespace fastnorm

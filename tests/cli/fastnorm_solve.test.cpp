@@ -1,0 +1,136 @@
+// fastnorm-solve as a user runs it: output line, --write-case, exit statuses, messages.
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <catch2/catch.hpp>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <fastnorm/fastnorm.hpp>
+#include <regex>
+#include <string>
+
+#include "support/peer_cases.hpp"
+
+using Catch::Matchers::Contains;
+namespace fs = std::filesystem;
+
+namespace {
+
+struct Outcome {
+  int status;
+  std::string output;  // stdout and stderr
+};
+
+Outcome run_solver(const std::string& arguments) {
+  const std::string command = std::string(FASTNORM_SOLVE_EXE) + " " + arguments + " 2>&1";
+  FILE* pipe = popen(command.c_str(), "r");
+  REQUIRE(pipe != nullptr);
+  std::string output;
+  char buffer[4096];
+  while (std::fgets(buffer, sizeof buffer, pipe)) output += buffer;
+  const int raw = pclose(pipe);
+  return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, output};
+}
+
+double field(const std::string& output, const std::string& name) {
+  const std::regex pattern("(^|[ \\n])" + name + "=([^ \\n]+)");
+  std::smatch match;
+  REQUIRE(std::regex_search(output, match, pattern));
+  return std::stod(match[2].str());
+}
+
+// A scratch folder per test run.
+fs::path scratch() {
+  const fs::path dir = fs::temp_directory_path() / ("fastnorm_cli_" + std::to_string(getpid()));
+  fs::create_directories(dir);
+  return dir;
+}
+
+// A small sphere problem in force control, written as a case without a result.
+fs::path write_sphere_case(const fs::path& dir) {
+  const fastnorm::Material<> steel(2.1e11, 0.3);
+  const auto hertz = fastnorm::hertz_from_force(0.3, 0.3, steel.combined_modulus(), 5e4);
+  const auto grid = fastnorm::hertz_grid(hertz, 15);
+  fastnorm::Case<> problem{"sphere 15x15", "cli test", grid, steel, fastnorm::Loading<>::force(5e4), 0.0,
+                           fastnorm::hertz_undeformed_distance(grid, 0.3, 0.3), std::nullopt};
+  const fs::path path = dir / "sphere.case";
+  std::ofstream out(path);
+  fastnorm::write_case(out, problem);
+  return path;
+}
+
+}  // namespace
+
+TEST_CASE("fastnorm-solve solves a case, writes it back and compares with its result", "[cli]") {
+  const fs::path dir = scratch();
+  const fs::path input = write_sphere_case(dir), output = dir / "solved.case";
+
+  const auto first = run_solver(input.string() + " --write-case " + output.string());
+  INFO(first.output);
+  REQUIRE(first.status == 0);
+  CHECK_THAT(first.output, Contains("status converged"));
+  CHECK(field(first.output, "fn") == Approx(5e4).epsilon(1e-9));
+  CHECK(field(first.output, "approach") > 0);
+  CHECK(field(first.output, "ncontact") > 0);
+  CHECK(field(first.output, "iterations") >= 1);
+  CHECK(field(first.output, "solve_s") >= 0);
+  CHECK_THAT(first.output, !Contains("ref_fn="));
+
+  const auto written = fastnorm::read_case_file(output.string());
+  REQUIRE(written.result.has_value());
+  CHECK(written.result->pressure.sum() * written.grid.element_area() == Approx(5e4).epsilon(1e-9));
+  CHECK(written.result->contact_count == static_cast<Eigen::Index>(field(first.output, "ncontact")));
+
+  const auto again = run_solver(output.string() + " --quiet");
+  INFO(again.output);
+  REQUIRE(again.status == 0);
+  CHECK_THAT(again.output, !Contains("status"));
+  CHECK(field(again.output, "ref_fn") == Approx(5e4).epsilon(1e-9));
+  CHECK(field(again.output, "rel_fn_diff") < 1e-12);
+  CHECK(field(again.output, "max_abs_dp_over_pmax") < 1e-12);
+  CHECK(field(again.output, "contact_mismatch") == 0);
+
+  // Approach control takes h as it stands: this h is the unloaded gap, so no contact.
+  const auto approach = run_solver(input.string() + " --control approach --quiet");
+  CHECK(approach.status == 0);
+  CHECK(field(approach.output, "fn") == 0);
+  CHECK(field(approach.output, "ncontact") == 0);
+  fs::remove_all(dir);
+}
+
+TEST_CASE("fastnorm-solve rejects bad input with status 2 and writes nothing", "[cli]") {
+  const fs::path dir = scratch();
+  const fs::path good = write_sphere_case(dir), bad = dir / "bad.case", out = dir / "out.case";
+  std::ofstream(bad) << "fastnorm-case 1\nname bad\nsource test\ngrid mx 2 my 2 dx 1e-4 dy -1e-4 x0 0 y0 0\n";
+
+  struct Bad {
+    std::string arguments, message;
+  };
+  for (const Bad& c : {Bad{bad.string(), "bad.case:4"}, Bad{(dir / "missing.case").string(), "missing.case"},
+                       Bad{good.string() + " --solver cg", "unknown solver 'cg'"},
+                       Bad{good.string() + " --control sideways", "--control"},
+                       Bad{good.string() + " --bogus", "unknown option '--bogus'"},
+                       Bad{good.string() + " --solver", "needs a value"}, Bad{"", "no CASE"}}) {
+    const auto outcome = run_solver("--write-case " + out.string() + " " + c.arguments);
+    INFO(c.arguments << "\n" << outcome.output);
+    CHECK(outcome.status == 2);
+    CHECK_THAT(outcome.output, Contains(c.message));
+    CHECK_FALSE(fs::exists(out));
+  }
+  fs::remove_all(dir);
+}
+
+TEST_CASE("fastnorm-solve reproduces a CONTACT peer case", "[cli][peer]") {
+  const auto files = fastnorm::test::peer_case_files("hertz_sphere_30x30");
+  if (files.empty()) {
+    WARN("peer cases not found in " << fastnorm::test::peer_cases_dir() << ": skipped");
+    return;
+  }
+  const auto outcome = run_solver(files.front() + " --quiet");
+  INFO(outcome.output);
+  REQUIRE(outcome.status == 0);
+  CHECK(field(outcome.output, "rel_fn_diff") < 1e-7);
+  CHECK(field(outcome.output, "max_abs_dp_over_pmax") < 1e-6);
+  CHECK(field(outcome.output, "contact_mismatch") == 0);
+}

@@ -1,0 +1,28 @@
+# Builds and runs tests/consumer against fastnorm, in MODE find_package (after an
+# install of BUILD_DIR into a temporary prefix) or add_subdirectory (of SOURCE_DIR).
+file(REMOVE_RECURSE "${WORK_DIR}")
+set(configure_args -S "${SOURCE_DIR}/tests/consumer" -B "${WORK_DIR}/build" -G "${GENERATOR}"
+    -DCMAKE_BUILD_TYPE=Release)
+if(MODE STREQUAL "find_package")
+  execute_process(COMMAND "${CMAKE_COMMAND}" --install "${BUILD_DIR}" --prefix "${WORK_DIR}/prefix"
+                  RESULT_VARIABLE status)
+  if(status)
+    message(FATAL_ERROR "cmake --install into ${WORK_DIR}/prefix failed (${status})")
+  endif()
+  list(APPEND configure_args "-DCMAKE_PREFIX_PATH=${WORK_DIR}/prefix")
+else()
+  list(APPEND configure_args "-DFASTNORM_SOURCE_DIR=${SOURCE_DIR}")
+endif()
+foreach(step configure build run)
+  if(step STREQUAL "configure")
+    set(command "${CMAKE_COMMAND}" ${configure_args})
+  elseif(step STREQUAL "build")
+    set(command "${CMAKE_COMMAND}" --build "${WORK_DIR}/build")
+  else()
+    set(command "${WORK_DIR}/build/consumer")
+  endif()
+  execute_process(COMMAND ${command} RESULT_VARIABLE status)
+  if(status)
+    message(FATAL_ERROR "consumer ${step} (${MODE}) failed: ${status}")
+  endif()
+endforeach()

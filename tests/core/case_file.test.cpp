@@ -1,0 +1,112 @@
+#include <catch2/catch.hpp>
+#include <fastnorm/case_file.hpp>
+#include <sstream>
+
+using Catch::Matchers::Contains;
+
+namespace {
+
+const char* const valid_case = R"(# a comment before the magic line
+fastnorm-case 1
+name small test case
+source hand-written   # trailing comment
+
+grid mx 3 my 2 dx 1e-4 dy 2e-4 x0 -1e-4 y0 0
+material E 2.1e11 nu 0.3
+control force 1500
+h
+ 1e-6 -2e-6 3e-6
+-4e-6 5e-6 -6e-6
+result ncontact 3 fn 1500 approach 1e-6 unknown_field 7 iterations 2 solve_s 0.01
+p
+0 1e8 0
+1e8 0 5e7
+)";
+
+fastnorm::Case<> read_text(const std::string& text) {
+  std::istringstream in(text);
+  return fastnorm::read_case(in, "test.case");
+}
+
+// Replaces the first occurrence of `from` in the valid case by `to`.
+std::string edited(const std::string& from, const std::string& to) {
+  std::string text = valid_case;
+  const auto at = text.find(from);
+  REQUIRE(at != std::string::npos);
+  return text.replace(at, from.size(), to);
+}
+
+int error_line(const std::string& text) {
+  try {
+    read_text(text);
+  } catch (const fastnorm::case_format_error& error) {
+    return error.line();
+  }
+  return -1;
+}
+
+}  // namespace
+
+TEST_CASE("Case reader reads every part", "[case]") {
+  const auto problem = read_text(valid_case);
+  CHECK(problem.name == "small test case");
+  CHECK(problem.source == "hand-written");
+  CHECK(problem.grid.mx() == 3);
+  CHECK(problem.grid.my() == 2);
+  CHECK(problem.grid.dy() == 2e-4);
+  CHECK(problem.grid.x0() == -1e-4);
+  CHECK(problem.material.young_modulus() == 2.1e11);
+  CHECK(problem.loading.control == fastnorm::Control::force);
+  CHECK(problem.loading.normal_force == 1500);
+  CHECK(problem.undeformed_distance(problem.grid.index(2, 1)) == -6e-6);
+  REQUIRE(problem.result.has_value());
+  CHECK(problem.result->contact_count == 3);
+  CHECK(problem.result->iterations == 2);
+  CHECK(problem.result->pressure(problem.grid.index(2, 1)) == 5e7);
+}
+
+TEST_CASE("Case writer and reader round-trip exactly", "[case]") {
+  auto problem = read_text(valid_case);
+  problem.undeformed_distance(0) = 1.0 / 3.0 * 1e-5;  // needs all 17 digits
+  std::ostringstream out;
+  fastnorm::write_case(out, problem);
+  const auto again = read_text(out.str());
+  CHECK(again.name == problem.name);
+  CHECK(again.undeformed_distance == problem.undeformed_distance);
+  CHECK(again.result->pressure == problem.result->pressure);
+  CHECK(again.grid.dx() == problem.grid.dx());
+
+  auto approach_case = read_text(edited("control force 1500", "control approach 2.5e-5"));
+  approach_case.result.reset();
+  std::ostringstream approach_out;
+  fastnorm::write_case(approach_out, approach_case);
+  const auto approach_again = read_text(approach_out.str());
+  CHECK(approach_again.loading.control == fastnorm::Control::approach);
+  CHECK(approach_again.stated_approach == 2.5e-5);
+  CHECK_FALSE(approach_again.result.has_value());
+}
+
+TEST_CASE("Case reader rejects malformed files with the line number", "[case]") {
+  // Line numbers of the valid case: 2 magic, 3 name, 4 source, 6 grid, 7 material,
+  // 8 control, 9 h, 10–11 numbers, 12 result, 13 p, 14–15 numbers.
+  CHECK(error_line(edited("fastnorm-case 1", "fastnorm-case 2")) == 2);
+  CHECK(error_line(edited("source hand-written", "origin hand-written")) == 4);
+  CHECK(error_line(edited("grid mx 3 my 2", "grid mx 3 ny 2")) == 6);
+  CHECK(error_line(edited("dx 1e-4", "dx 0")) == 6);
+  CHECK(error_line(edited("dy 2e-4", "dy -2e-4")) == 6);
+  CHECK(error_line(edited("mx 3", "mx three")) == 6);
+  CHECK(error_line(edited("material E 2.1e11", "material E -2.1e11")) == 7);
+  CHECK(error_line(edited("control force 1500", "control torque 1500")) == 8);
+  CHECK(error_line(edited("control force 1500", "control force 0")) == 8);
+  CHECK(error_line(edited("-4e-6 5e-6 -6e-6", "-4e-6 5e-6")) == 12);          // fewer numbers
+  CHECK(error_line(edited("-4e-6 5e-6 -6e-6", "-4e-6 5e-6 -6e-6 7e-6")) == 11);  // more numbers
+  CHECK(error_line(edited("-4e-6 5e-6 -6e-6", "-4e-6 nan -6e-6")) == 11);
+  CHECK(error_line(edited("-4e-6 5e-6 -6e-6", "-4e-6 inf -6e-6")) == 11);
+  CHECK(error_line(edited("-4e-6 5e-6 -6e-6", "-4e-6 5e-6x -6e-6")) == 11);
+  CHECK(error_line(edited("1e8 0 5e7", "1e8 0")) == 15);                       // p block short at EOF
+  CHECK(error_line(edited(" fn 1500", " force 1500")) == 12);                  // result lacks fn
+  CHECK(error_line(edited("p\n", "q\n")) == 13);
+  CHECK(error_line("fastnorm-case 1\nname x\n") == 2);                          // truncated
+  CHECK_THROWS_WITH(read_text(edited("dx 1e-4", "dx 0")), Contains("test.case:6"));
+  CHECK_THROWS_AS(fastnorm::read_case_file("/nonexistent/x.case"), fastnorm::invalid_argument);
+}

@@ -1,0 +1,189 @@
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <fastnorm/influence.hpp>
+#include <vector>
+
+namespace {
+
+using Real = long double;
+const Real pi = 3.14159265358979323846264338327950288L;
+
+// Gauss–Legendre rule on [−1, 1] by Newton's method on P_n (independent of the kernel).
+struct GaussLegendre {
+  std::vector<Real> nodes, weights;
+  explicit GaussLegendre(int n) {
+    for (int i = 1; i <= n; ++i) {
+      Real x = std::cos(pi * (i - 0.25L) / (n + 0.5L)), derivative = 0;
+      for (int step = 0; step < 100; ++step) {
+        Real p0 = 1, p1 = x;
+        for (int k = 2; k <= n; ++k) {
+          const Real p2 = ((2 * k - 1) * x * p1 - (k - 1) * p0) / k;
+          p0 = p1;
+          p1 = p2;
+        }
+        derivative = n * (x * p1 - p0) / (x * x - 1);
+        const Real dx = p1 / derivative;
+        x -= dx;
+        if (std::abs(dx) < 1e-19L) break;
+      }
+      nodes.push_back(x);
+      weights.push_back(2 / ((1 - x * x) * derivative * derivative));
+    }
+  }
+  // Composite rule of `panels` equal panels on [low, high].
+  template <typename F>
+  Real integrate(F f, Real low, Real high, int panels) const {
+    Real sum = 0;
+    const Real width = (high - low) / panels;
+    for (int p = 0; p < panels; ++p) {
+      const Real mid = low + (p + 0.5L) * width;
+      for (std::size_t n = 0; n < nodes.size(); ++n) sum += weights[n] * f(mid + width / 2 * nodes[n]);
+    }
+    return sum * width / 2;
+  }
+};
+
+const GaussLegendre rule(24);
+
+// ∫₀^X ∫₀^Y dA / r for X, Y ≥ 0 in polar coordinates around the singular corner:
+// ∫₀^θc X / cos θ dθ + ∫_θc^(π/2) Y / sin θ dθ, θc = atan2(Y, X). Smooth 1-D integrands.
+Real corner_integral(Real X, Real Y) {
+  if (X == 0 || Y == 0) return 0;
+  const Real corner = std::atan2(Y, X);
+  const auto along_x = [X](Real theta) { return X / std::cos(theta); };
+  const auto along_y = [Y](Real theta) { return Y / std::sin(theta); };
+  return rule.integrate(along_x, 0, corner, 64) + rule.integrate(along_y, corner, pi / 2, 64);
+}
+
+// ∫∫ dA / r over [x1, x2] × [y1, y2], the field point at the origin (may lie inside).
+Real rectangle_integral_near(Real x1, Real x2, Real y1, Real y2) {
+  const auto signed_corner = [](Real X, Real Y) {
+    const Real sign = (X < 0) != (Y < 0) ? -1 : 1;
+    return sign * corner_integral(std::abs(X), std::abs(Y));
+  };
+  return signed_corner(x2, y2) - signed_corner(x1, y2) - signed_corner(x2, y1) + signed_corner(x1, y1);
+}
+
+// The same by a direct 2-D tensor rule: for field points well outside the rectangle.
+Real rectangle_integral_far(Real x1, Real x2, Real y1, Real y2) {
+  const auto row = [&](Real x) {
+    return rule.integrate([x](Real y) { return 1 / std::sqrt(x * x + y * y); }, y1, y2, 4);
+  };
+  return rule.integrate(row, x1, x2, 4);
+}
+
+// C(di·dx, dj·dy) by quadrature: (1/(π E*)) ∫∫ over the rectangle of the source element.
+Real quadrature_coefficient(int di, int dj, Real dx, Real dy, Real combined_modulus, bool near) {
+  const Real x = di * dx, y = dj * dy;  // field point relative to the source centre
+  const Real x1 = -x - dx / 2, x2 = -x + dx / 2, y1 = -y - dy / 2, y2 = -y + dy / 2;
+  const Real integral =
+      near ? rectangle_integral_near(x1, x2, y1, y2) : rectangle_integral_far(x1, x2, y1, y2);
+  return integral / (pi * combined_modulus);
+}
+
+}  // namespace
+
+TEST_CASE("Influence coefficients agree with numerical quadrature of 1/r", "[influence]") {
+  const double combined_modulus = 1.153846153846e11;
+  struct Shape {
+    double dx, dy;
+  };
+  const Shape shape = GENERATE(Shape{1e-3, 1e-3}, Shape{1e-3, 3e-3}, Shape{2e-3, 0.5e-3});
+  const fastnorm::Grid<> grid(60, 60, shape.dx, shape.dy);
+  const fastnorm::InfluenceTable<> table(grid, fastnorm::Material<>(2.1e11, 0.3));
+  REQUIRE(table.combined_modulus() == Approx(combined_modulus).epsilon(1e-12));
+
+  SECTION("near offsets, the self term included") {
+    for (auto [di, dj] : std::vector<std::pair<int, int>>{{0, 0}, {1, 0}, {0, 1}, {1, 1}, {2, 1}, {1, 3}}) {
+      const Real expected = quadrature_coefficient(di, dj, shape.dx, shape.dy, table.combined_modulus(), true);
+      INFO("dx=" << shape.dx << " dy=" << shape.dy << " offset (" << di << "," << dj << ")");
+      CHECK(std::abs(table.at_offset(di, dj) / static_cast<double>(expected) - 1) <= 1e-9);
+    }
+  }
+  SECTION("far offsets") {
+    for (auto [di, dj] : std::vector<std::pair<int, int>>{{4, 3}, {10, 0}, {0, 17}, {25, 9}, {59, 59}}) {
+      const Real expected = quadrature_coefficient(di, dj, shape.dx, shape.dy, table.combined_modulus(), false);
+      INFO("dx=" << shape.dx << " dy=" << shape.dy << " offset (" << di << "," << dj << ")");
+      CHECK(std::abs(table.at_offset(di, dj) / static_cast<double>(expected) - 1) <= 1e-9);
+    }
+  }
+}
+
+TEST_CASE("Self term has its closed form", "[influence]") {
+  const double e_star = 1e11, a = 0.5e-3, b = 1.5e-3, pi_d = 3.14159265358979323846;
+  const double rectangle = 4 * (a * std::asinh(b / a) + b * std::asinh(a / b)) / (pi_d * e_star);
+  CHECK(fastnorm::love_coefficient(0.0, 0.0, a, b, e_star) == Approx(rectangle).epsilon(1e-14));
+  const double square = 8 * a * std::log(1 + std::sqrt(2.0)) / (pi_d * e_star);
+  CHECK(fastnorm::love_coefficient(0.0, 0.0, a, a, e_star) == Approx(square).epsilon(1e-14));
+}
+
+TEST_CASE("Kernel is even in x and y and the table symmetric", "[influence]") {
+  const double a = 0.3e-3, b = 0.45e-3, e_star = 1.15e11;
+  for (double x : {0.0, 0.2e-3, 1.7e-3, 9e-3}) {
+    for (double y : {0.0, 0.4e-3, 3.3e-3}) {
+      const double c = fastnorm::love_coefficient(x, y, a, b, e_star);
+      CHECK(fastnorm::love_coefficient(-x, y, a, b, e_star) == Approx(c).epsilon(1e-15));
+      CHECK(fastnorm::love_coefficient(x, -y, a, b, e_star) == Approx(c).epsilon(1e-15));
+      CHECK(fastnorm::love_coefficient(-x, -y, a, b, e_star) == Approx(c).epsilon(1e-15));
+    }
+  }
+  const fastnorm::Grid<> grid(7, 5, 2 * a, 2 * b);
+  const fastnorm::InfluenceTable<> table(grid, fastnorm::Material<>(2.1e11, 0.3));
+  for (Eigen::Index k = 0; k < grid.size(); ++k) {
+    for (Eigen::Index l = 0; l < grid.size(); ++l) CHECK(table(k, l) == table(l, k));
+  }
+}
+
+TEST_CASE("Far field tends to dx·dy / (π E* r)", "[influence]") {
+  const double dx = 1e-3, dy = 2e-3, e_star = 1e11, pi_d = 3.14159265358979323846;
+  double previous_error = 1;
+  for (double distance : {10e-3, 30e-3, 100e-3, 300e-3}) {
+    const double x = distance * 0.6, y = distance * 0.8;
+    const double point_load = dx * dy / (pi_d * e_star * distance);
+    const double error = std::abs(fastnorm::love_coefficient(x, y, dx / 2, dy / 2, e_star) / point_load - 1);
+    INFO("r = " << distance << " relative difference " << error);
+    // The first correction is of order (size / r)²: a factor ≈ 9–11 per step of 3 in r.
+    CHECK(error < 0.1 * (dy / distance) * (dy / distance) * 10);
+    CHECK(error < previous_error / 8);
+    previous_error = error;
+  }
+}
+
+TEST_CASE("Dense blocks and displacements read the same table", "[influence]") {
+  const fastnorm::Grid<> grid(9, 6, 0.4e-3, 0.6e-3);
+  const fastnorm::InfluenceTable<> table(grid, fastnorm::Material<>(2.1e11, 0.3));
+  const std::vector<Eigen::Index> set{0, 4, 13, 22, 40, 53};
+  const Eigen::MatrixXd block = table.dense_block(set);
+  Eigen::VectorXd pressure(static_cast<Eigen::Index>(set.size()));
+  for (std::size_t r = 0; r < set.size(); ++r) {
+    pressure(static_cast<Eigen::Index>(r)) = 1e8 * (1.0 + static_cast<double>(r));
+    for (std::size_t c = 0; c < set.size(); ++c) {
+      CHECK(block(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(c)) == table(set[r], set[c]));
+    }
+  }
+  const Eigen::VectorXd by_block = block * pressure;
+  const Eigen::VectorXd by_sum = table.displacement(set, set, pressure);
+  CHECK((by_block - by_sum).cwiseAbs().maxCoeff() <= 1e-14 * by_block.cwiseAbs().maxCoeff());
+
+  Eigen::VectorXd full = Eigen::VectorXd::Zero(grid.size());
+  for (std::size_t r = 0; r < set.size(); ++r) full(set[r]) = pressure(static_cast<Eigen::Index>(r));
+  const Eigen::VectorXd everywhere = table.displacement(full);
+  for (std::size_t r = 0; r < set.size(); ++r) {
+    CHECK(everywhere(set[r]) == Approx(by_block(static_cast<Eigen::Index>(r))).epsilon(1e-14));
+  }
+  CHECK_THROWS_WITH(table.displacement(Eigen::VectorXd::Zero(3)), Catch::Matchers::Contains("pressure"));
+}
+
+TEMPLATE_TEST_CASE("Kernel in float, double and long double", "[influence]", float, double, long double) {
+  const fastnorm::Grid<TestType> grid(30, 20, TestType(0.3e-3), TestType(0.45e-3));
+  const fastnorm::InfluenceTable<TestType> table(grid, fastnorm::Material<TestType>(TestType(2.1e11), TestType(0.3)));
+  const fastnorm::InfluenceTable<double> reference(
+      fastnorm::Grid<>(30, 20, static_cast<double>(TestType(0.3e-3)), static_cast<double>(TestType(0.45e-3))),
+      fastnorm::Material<>(static_cast<double>(TestType(2.1e11)), static_cast<double>(TestType(0.3))));
+  // Evaluated in at least double precision, rounded once to TestType.
+  const double tolerance = std::is_same_v<TestType, float> ? 1e-6 : 1e-13;
+  for (auto [di, dj] : std::vector<std::pair<int, int>>{{0, 0}, {1, 2}, {29, 19}}) {
+    CHECK(static_cast<double>(table.at_offset(di, dj)) ==
+          Approx(reference.at_offset(di, dj)).epsilon(tolerance));
+  }
+}

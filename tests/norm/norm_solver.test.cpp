@@ -1,0 +1,117 @@
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <fastnorm/hertz.hpp>
+#include <fastnorm/norm_solver.hpp>
+
+#include "support/complementarity.hpp"
+
+using Catch::Matchers::Contains;
+
+namespace {
+
+const fastnorm::Material<> steel(2.1e11, 0.3);
+
+// A non-Hertzian surface: two bumps of different radii side by side and a waviness, so
+// that the contact has two patches, and approach control interpenetrates both.
+Eigen::VectorXd two_bumps(const fastnorm::Grid<>& grid, double approach) {
+  Eigen::VectorXd h(grid.size());
+  for (Eigen::Index k = 0; k < grid.size(); ++k) {
+    const double x = grid.x_of(k), y = grid.y_of(k);
+    const double left = (x * x) / (2 * 0.3) + (y + 2.2e-3) * (y + 2.2e-3) / (2 * 0.1);
+    const double right = (x * x) / (2 * 0.5) + (y - 2.0e-3) * (y - 2.0e-3) / (2 * 0.15) + 4e-6;
+    h(k) = std::min(left, right) + 1e-6 * std::sin(x / 7e-4) * std::cos(y / 9e-4) - approach;
+  }
+  return h;
+}
+
+const fastnorm::Grid<> grid(36, 44, 0.2e-3, 0.15e-3, -3.5e-3, -3.225e-3);
+
+}  // namespace
+
+TEST_CASE("NORM satisfies the Signorini conditions on a two-patch contact", "[norm]") {
+  const fastnorm::NormSolver<> solver(grid, steel);
+  const Eigen::VectorXd h = two_bumps(grid, 3e-5);
+  const auto by_approach = solver.solve(h, fastnorm::Loading<>::approach());
+  REQUIRE(by_approach.status == fastnorm::Status::converged);
+  CHECK(by_approach.approach == 0);
+  CHECK(by_approach.contact_count() > 20);
+  fastnorm::test::require_complementarity(solver.influence(), h, by_approach);
+
+  // Both patches carry load.
+  double left = 0, right = 0;
+  for (Eigen::Index k = 0; k < grid.size(); ++k) (grid.y_of(k) < 0 ? left : right) += by_approach.pressure(k);
+  CHECK(left > 0);
+  CHECK(right > 0);
+
+  SECTION("force control with that force finds the same pressures and δ = 0") {
+    const auto by_force = solver.solve(h, fastnorm::Loading<>::force(by_approach.normal_force));
+    REQUIRE(by_force.status == fastnorm::Status::converged);
+    CHECK(std::abs(by_force.approach) <= 1e-12 * h.cwiseAbs().maxCoeff());
+    CHECK((by_force.pressure - by_approach.pressure).cwiseAbs().maxCoeff() <=
+          1e-9 * by_approach.pressure.maxCoeff());
+    CHECK((by_force.in_contact == by_approach.in_contact).all());
+    fastnorm::test::require_complementarity(solver.influence(), h, by_force);
+  }
+  SECTION("force control from an unloaded h finds the approach") {
+    const Eigen::VectorXd h0 = two_bumps(grid, 0.0);
+    const auto by_force = solver.solve(h0, fastnorm::Loading<>::force(by_approach.normal_force));
+    REQUIRE(by_force.status == fastnorm::Status::converged);
+    CHECK(by_force.approach == Approx(3e-5).epsilon(1e-9));
+    CHECK(by_force.normal_force == Approx(by_approach.normal_force).epsilon(1e-12));
+  }
+  SECTION("Kalker's original starting set gives the same answer") {
+    fastnorm::NormOptions<> kalker;
+    kalker.start_depth_fraction = 1;
+    const auto original = fastnorm::NormSolver<>(grid, steel, kalker).solve(h, fastnorm::Loading<>::approach());
+    REQUIRE(original.status == fastnorm::Status::converged);
+    CHECK((original.pressure - by_approach.pressure).cwiseAbs().maxCoeff() <=
+          1e-9 * by_approach.pressure.maxCoeff());
+  }
+}
+
+TEST_CASE("NORM reports no contact when every gap is open", "[norm]") {
+  const fastnorm::NormSolver<> solver(grid, steel);
+  const auto solution = solver.solve(two_bumps(grid, -1e-6), fastnorm::Loading<>::approach());
+  CHECK(solution.status == fastnorm::Status::no_contact);
+  CHECK(solution.ok());
+  CHECK(solution.normal_force == 0);
+  CHECK(solution.contact_count() == 0);
+  CHECK(solution.pressure.size() == grid.size());
+  CHECK(solution.pressure.cwiseAbs().maxCoeff() == 0);
+}
+
+TEST_CASE("NORM reports the iteration limit as a status", "[norm]") {
+  fastnorm::NormOptions<> options;
+  options.max_iterations = 1;
+  const fastnorm::NormSolver<> solver(grid, steel, options);
+  const auto solution = solver.solve(two_bumps(grid, 3e-5), fastnorm::Loading<>::approach());
+  CHECK(solution.status == fastnorm::Status::iteration_limit);
+  CHECK_FALSE(solution.ok());
+  CHECK(solution.iterations == 1);
+  CHECK(solution.pressure.minCoeff() >= 0);
+}
+
+TEST_CASE("NORM rejects bad input naming the argument", "[norm]") {
+  const fastnorm::NormSolver<> solver(grid, steel);
+  Eigen::VectorXd h = two_bumps(grid, 3e-5);
+  CHECK_THROWS_WITH(solver.solve(h.head(10), fastnorm::Loading<>::approach()),
+                    Contains("undeformed_distance"));
+  h(17) = std::nan("");
+  CHECK_THROWS_WITH(solver.solve(h, fastnorm::Loading<>::approach()), Contains("undeformed_distance[17]"));
+  h(17) = INFINITY;
+  CHECK_THROWS_AS(solver.solve(h, fastnorm::Loading<>::approach()), fastnorm::invalid_argument);
+  CHECK_THROWS_WITH(fastnorm::Loading<>::force(0.0), Contains("normal_force"));
+  CHECK_THROWS_WITH(fastnorm::Loading<>::force(-5.0), Contains("normal_force"));
+  const fastnorm::Loading<> unchecked{fastnorm::Control::force, -1.0};
+  CHECK_THROWS_WITH(solver.solve(two_bumps(grid, 0), unchecked), Contains("normal_force"));
+
+  fastnorm::NormOptions<> options;
+  options.max_iterations = 0;
+  CHECK_THROWS_WITH(fastnorm::NormSolver<>(grid, steel, options), Contains("max_iterations"));
+  options = {};
+  options.gap_tolerance = -1;
+  CHECK_THROWS_WITH(fastnorm::NormSolver<>(grid, steel, options), Contains("gap_tolerance"));
+  options = {};
+  options.start_depth_fraction = 0;
+  CHECK_THROWS_WITH(fastnorm::NormSolver<>(grid, steel, options), Contains("start_depth_fraction"));
+}
