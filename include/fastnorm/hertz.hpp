@@ -34,24 +34,37 @@ struct HertzContact {
 
 namespace detail {
 
-/// Eccentricity e of the contact ellipse and the elliptic-integral factors for the
-/// curvature ratio B/A ≥ 1 (docs/hertz.md Eq. (H2)): returns {e, K(e), (K − E)/e²}.
+/// What fixes the shape of the contact ellipse: the smaller curvature A = 1/(2 max R),
+/// the eccentricity e and the factors K(e) and (K − E)/e² (docs/hertz.md Eq. (H2)).
 template <typename Scalar>
 struct HertzShape {
+  Scalar smaller_curvature;
   Scalar eccentricity;
   Scalar k_integral;
   Scalar k_minus_e_over_e2;
 };
 
+/// The shape for radii R_x, R_y, which must be positive and finite, like E*.
+/// @throws fastnorm::invalid_argument naming the offending argument
 template <typename Scalar>
-HertzShape<Scalar> hertz_shape(Scalar curvature_ratio) {
+HertzShape<Scalar> hertz_shape(Scalar radius_x, Scalar radius_y, Scalar combined_modulus) {
+  FASTNORM_CHECK(std::isfinite(radius_x) && radius_x > 0,
+                 describe("hertz: radius_x must be positive and finite (m)", radius_x));
+  FASTNORM_CHECK(std::isfinite(radius_y) && radius_y > 0,
+                 describe("hertz: radius_y must be positive and finite (m)", radius_y));
+  FASTNORM_CHECK(std::isfinite(combined_modulus) && combined_modulus > 0,
+                 describe("hertz: combined_modulus must be positive and finite (Pa)",
+                          combined_modulus));
+  const Scalar smaller_curvature = 1 / (2 * std::max(radius_x, radius_y));
+  const Scalar curvature_ratio = std::max(radius_x, radius_y) / std::min(radius_x, radius_y);
   const Scalar pi = Scalar(3.14159265358979323846L);
-  auto shape = [pi](Scalar e) {
+  auto shape = [pi, smaller_curvature](Scalar e) {
     if (e < Scalar(1e-4)) {  // series: K − E = (π/2)(e²/2 + 3e⁴/16 + …)
-      return HertzShape<Scalar>{e, pi / 2 * (1 + e * e / 4), pi / 4 * (1 + 3 * e * e / 8)};
+      return HertzShape<Scalar>{smaller_curvature, e, pi / 2 * (1 + e * e / 4),
+                                pi / 4 * (1 + 3 * e * e / 8)};
     }
     const Scalar k = std::comp_ellint_1(e), E = std::comp_ellint_2(e);
-    return HertzShape<Scalar>{e, k, (k - E) / (e * e)};
+    return HertzShape<Scalar>{smaller_curvature, e, k, (k - E) / (e * e)};
   };
   // B/A = ((a/b)² E − K)/(K − E), increasing in e from 1 at e = 0: bisection.
   auto ratio_of = [](Scalar e) {
@@ -67,27 +80,15 @@ HertzShape<Scalar> hertz_shape(Scalar curvature_ratio) {
   return shape((low + high) / 2);
 }
 
-template <typename Scalar>
-void check_hertz_input(Scalar radius_x, Scalar radius_y, Scalar combined_modulus) {
-  FASTNORM_CHECK(std::isfinite(radius_x) && radius_x > 0,
-                 describe("hertz: radius_x must be positive and finite (m)", radius_x));
-  FASTNORM_CHECK(std::isfinite(radius_y) && radius_y > 0,
-                 describe("hertz: radius_y must be positive and finite (m)", radius_y));
-  FASTNORM_CHECK(std::isfinite(combined_modulus) && combined_modulus > 0,
-                 describe("hertz: combined_modulus must be positive and finite (Pa)",
-                          combined_modulus));
-}
-
 /// Completes the contact from the long semi-axis `a` (along the smaller curvature A).
 template <typename Scalar>
 HertzContact<Scalar> hertz_from_long_axis(Scalar radius_x, Scalar radius_y, Scalar combined_modulus,
                                           Scalar a, const HertzShape<Scalar>& shape) {
   const Scalar pi = Scalar(3.14159265358979323846L);
-  const Scalar smaller_curvature = 1 / (2 * std::max(radius_x, radius_y));
   const Scalar b = a * std::sqrt(1 - shape.eccentricity * shape.eccentricity);
   HertzContact<Scalar> contact;
   contact.normal_force =
-      a * a * a * 2 * pi * combined_modulus * smaller_curvature / (3 * shape.k_minus_e_over_e2);
+      a * a * a * 2 * pi * combined_modulus * shape.smaller_curvature / (3 * shape.k_minus_e_over_e2);
   contact.max_pressure = 3 * contact.normal_force / (2 * pi * a * b);
   contact.approach = contact.max_pressure * b * shape.k_integral / combined_modulus;
   const bool long_axis_is_x = radius_x >= radius_y;
@@ -107,15 +108,13 @@ template <typename Scalar>
 HertzContact<Scalar> hertz_from_force(Scalar radius_x, Scalar radius_y, Scalar combined_modulus,
                                       Scalar normal_force) {
   static_assert(std::is_floating_point_v<Scalar>);
-  detail::check_hertz_input(radius_x, radius_y, combined_modulus);
+  const auto shape = detail::hertz_shape(radius_x, radius_y, combined_modulus);
   FASTNORM_CHECK(std::isfinite(normal_force) && normal_force > 0,
                  detail::describe("hertz: normal_force must be positive and finite (N)", normal_force));
   const Scalar pi = Scalar(3.14159265358979323846L);
-  const auto shape = detail::hertz_shape(std::max(radius_x, radius_y) / std::min(radius_x, radius_y));
-  const Scalar smaller_curvature = 1 / (2 * std::max(radius_x, radius_y));
   // a³ = 3 F (K − E) / (2π E* e² A)   (docs/hertz.md Eq. (H3))
   const Scalar a = std::cbrt(3 * normal_force * shape.k_minus_e_over_e2 /
-                             (2 * pi * combined_modulus * smaller_curvature));
+                             (2 * pi * combined_modulus * shape.smaller_curvature));
   return detail::hertz_from_long_axis(radius_x, radius_y, combined_modulus, a, shape);
 }
 
@@ -125,13 +124,12 @@ template <typename Scalar>
 HertzContact<Scalar> hertz_from_approach(Scalar radius_x, Scalar radius_y, Scalar combined_modulus,
                                          Scalar approach) {
   static_assert(std::is_floating_point_v<Scalar>);
-  detail::check_hertz_input(radius_x, radius_y, combined_modulus);
+  const auto shape = detail::hertz_shape(radius_x, radius_y, combined_modulus);
   FASTNORM_CHECK(std::isfinite(approach) && approach > 0,
                  detail::describe("hertz: approach must be positive and finite (m)", approach));
-  const auto shape = detail::hertz_shape(std::max(radius_x, radius_y) / std::min(radius_x, radius_y));
-  const Scalar smaller_curvature = 1 / (2 * std::max(radius_x, radius_y));
   // δ = a² A K e²/(K − E)   (docs/hertz.md Eq. (H4))
-  const Scalar a = std::sqrt(approach * shape.k_minus_e_over_e2 / (smaller_curvature * shape.k_integral));
+  const Scalar a =
+      std::sqrt(approach * shape.k_minus_e_over_e2 / (shape.smaller_curvature * shape.k_integral));
   return detail::hertz_from_long_axis(radius_x, radius_y, combined_modulus, a, shape);
 }
 
@@ -141,7 +139,7 @@ HertzContact<Scalar> hertz_from_approach(Scalar radius_x, Scalar radius_y, Scala
 template <typename Scalar>
 Eigen::Matrix<Scalar, Eigen::Dynamic, 1> hertz_undeformed_distance(const Grid<Scalar>& grid,
                                                                     Scalar radius_x, Scalar radius_y) {
-  detail::check_hertz_input(radius_x, radius_y, Scalar(1));
+  detail::hertz_shape(radius_x, radius_y, Scalar(1));  // validates the radii
   Eigen::Matrix<Scalar, Eigen::Dynamic, 1> h(grid.size());
   for (Eigen::Index k = 0; k < grid.size(); ++k) {
     const Scalar x = grid.x_of(k), y = grid.y_of(k);

@@ -7,7 +7,6 @@
 #include <filesystem>
 #include <fstream>
 #include <fastnorm/fastnorm.hpp>
-#include <regex>
 #include <string>
 
 #include "support/peer_cases.hpp"
@@ -33,11 +32,16 @@ Outcome run_solver(const std::string& arguments) {
   return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, output};
 }
 
+// The value of `name=value` where name starts a word of the output.
 double field(const std::string& output, const std::string& name) {
-  const std::regex pattern("(^|[ \\n])" + name + "=([^ \\n]+)");
-  std::smatch match;
-  REQUIRE(std::regex_search(output, match, pattern));
-  return std::stod(match[2].str());
+  const std::string key = name + "=";
+  for (auto at = output.find(key); at != std::string::npos; at = output.find(key, at + 1)) {
+    if (at == 0 || output[at - 1] == ' ' || output[at - 1] == '\n') {
+      return std::stod(output.substr(at + key.size()));
+    }
+  }
+  FAIL("no field '" << name << "' in the output");
+  return 0;
 }
 
 // A scratch folder per test run.
