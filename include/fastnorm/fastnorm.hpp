@@ -8,6 +8,7 @@
 #include "fastnorm/material.hpp"
 #include "fastnorm/influence.hpp"
 #include "fastnorm/solution.hpp"
+#include "fastnorm/active_set.hpp"
 #include "fastnorm/norm_solver.hpp"
 #include "fastnorm/hertz.hpp"
 #include "fastnorm/case_file.hpp"

@@ -38,6 +38,7 @@ enum class Status {
   converged,        ///< the contact set is stable and the Signorini conditions hold
   no_contact,       ///< approach control with every gap positive: zero pressure
   iteration_limit,  ///< the active-set loop reached Options::max_iterations
+  cycled,           ///< the set cycled (reduced bases only); the last admissible set is returned
   numerical_issue,  ///< a factorisation failed (matrix not positive definite)
 };
 
@@ -46,6 +47,7 @@ inline const char* to_string(Status status) {
     case Status::converged: return "converged";
     case Status::no_contact: return "no contact";
     case Status::iteration_limit: return "iteration limit";
+    case Status::cycled: return "cycled";
     case Status::numerical_issue: return "numerical issue";
   }
   return "unknown";

@@ -60,7 +60,7 @@ TEST_CASE("NORM satisfies the Signorini conditions on a two-patch contact", "[no
     CHECK(by_force.normal_force == Approx(by_approach.normal_force).epsilon(1e-12));
   }
   SECTION("Kalker's original starting set gives the same answer") {
-    fastnorm::NormOptions<> kalker;
+    fastnorm::ActiveSetOptions<> kalker;
     kalker.start_depth_fraction = 1;
     const auto original = fastnorm::NormSolver<>(grid, steel, kalker).solve(h, fastnorm::Loading<>::approach());
     REQUIRE(original.status == fastnorm::Status::converged);
@@ -81,7 +81,7 @@ TEST_CASE("NORM reports no contact when every gap is open", "[norm]") {
 }
 
 TEST_CASE("NORM reports the iteration limit as a status", "[norm]") {
-  fastnorm::NormOptions<> options;
+  fastnorm::ActiveSetOptions<> options;
   options.max_iterations = 1;
   const fastnorm::NormSolver<> solver(grid, steel, options);
   const auto solution = solver.solve(two_bumps(grid, 3e-5), fastnorm::Loading<>::approach());
@@ -105,7 +105,7 @@ TEST_CASE("NORM rejects bad input naming the argument", "[norm]") {
   const fastnorm::Loading<> unchecked{fastnorm::Control::force, -1.0};
   CHECK_THROWS_WITH(solver.solve(two_bumps(grid, 0), unchecked), Contains("normal_force"));
 
-  fastnorm::NormOptions<> options;
+  fastnorm::ActiveSetOptions<> options;
   options.max_iterations = 0;
   CHECK_THROWS_WITH(fastnorm::NormSolver<>(grid, steel, options), Contains("max_iterations"));
   options = {};

@@ -1,0 +1,246 @@
+#pragma once
+/// @file active_set.hpp
+/// The active-set loop shared by every solver (docs/norm.md §1): NORM solves each set
+/// exactly, the reduced solvers in a small basis; the loop around them is this one.
+
+#include <Eigen/Core>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <optional>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "fastnorm/error.hpp"
+#include "fastnorm/influence.hpp"
+#include "fastnorm/solution.hpp"
+
+namespace fastnorm {
+
+/// Settings of the active-set loop, shared by all solvers.
+template <typename Scalar = double>
+struct ActiveSetOptions {
+  /// Most linear solves before giving up with Status::iteration_limit.
+  int max_iterations = 200;
+  /// An element outside the set joins when its deformed gap is below
+  /// −gap_tolerance · max|h| (relative; keeps round-off from cycling an element
+  /// whose true gap is 0 in and out; docs/norm.md §2).
+  Scalar gap_tolerance = 1000 * std::numeric_limits<Scalar>::epsilon();
+  /// The starting set is {h − δ₀ ≤ start_depth_fraction · min(h − δ₀)}, δ₀ = 0 in approach
+  /// control and a Hertz-like guess in force control. 1 is Kalker's original start, all
+  /// interpenetrating elements; the default 0.5 is the Hertz contact area, which needs
+  /// fewer and smaller factorisations (docs/norm.md §2). NORM's answer does not depend on it.
+  Scalar start_depth_fraction = Scalar(0.5);
+
+  /// @throws fastnorm::invalid_argument naming the offending field
+  void validate() const {
+    FASTNORM_CHECK(max_iterations >= 1,
+                   detail::describe("options: max_iterations must be >= 1", max_iterations));
+    FASTNORM_CHECK(std::isfinite(gap_tolerance) && gap_tolerance >= 0,
+                   detail::describe("options: gap_tolerance must be finite and >= 0", gap_tolerance));
+    FASTNORM_CHECK(start_depth_fraction > 0 && start_depth_fraction <= 1,
+                   detail::describe("options: start_depth_fraction must lie in (0, 1]",
+                                    start_depth_fraction));
+  }
+};
+
+namespace detail {
+
+/// Rejects h of the wrong size or with NaN/Inf entries.
+template <typename Scalar>
+void check_undeformed_distance(const Grid<Scalar>& grid,
+                               const Eigen::Ref<const Eigen::Matrix<Scalar, Eigen::Dynamic, 1>>& h) {
+  FASTNORM_CHECK(h.size() == grid.size(),
+                 detail::describe("undeformed_distance must have grid.size() = " +
+                                      std::to_string(grid.size()) + " values",
+                                  h.size()));
+  for (Eigen::Index k = 0; k < h.size(); ++k) {
+    FASTNORM_CHECK(std::isfinite(h(k)), detail::describe("undeformed_distance[" + std::to_string(k) +
+                                                             "] must be finite",
+                                                         h(k)));
+  }
+}
+
+/// First guess of the approach δ in force control, used only to pick the starting set.
+/// Hertz-like estimate: the overlap {h0 < δ} of area A gives F ≈ (4/3) E* a (δ − min h0)
+/// with πa² ≈ A/2 (docs/norm.md Eq. (N3)). Returns δ.
+template <typename Scalar>
+Scalar approach_guess(const Eigen::Matrix<Scalar, Eigen::Dynamic, 1>& h0, Scalar element_area,
+                      Scalar combined_modulus, Scalar normal_force) {
+  std::vector<Scalar> sorted(h0.data(), h0.data() + h0.size());
+  std::sort(sorted.begin(), sorted.end());
+  const Scalar pi = Scalar(3.14159265358979323846L);
+  // Force per unit of (δ − min h0) when `overlap_count` elements overlap.
+  auto stiffness = [&](std::size_t overlap_count) {
+    return Scalar(4) / 3 * combined_modulus *
+           std::sqrt(static_cast<Scalar>(overlap_count) * element_area / (2 * pi));
+  };
+  for (std::size_t m = 1; m < sorted.size(); ++m) {
+    if (stiffness(m) * (sorted[m] - sorted.front()) >= normal_force) {
+      return sorted.front() + normal_force / stiffness(m);
+    }
+  }
+  return sorted.front() + normal_force / stiffness(sorted.size());
+}
+
+/// The active-set loop of docs/norm.md §1 around a solver of the problem restricted to a
+/// set. `set_solver.solve(active, rhs)` receives the sorted element numbers of the set and
+/// right-hand sides over it (n × 1: −h_I; n × 2 in force control: −h0_I and 1) and returns
+/// the pressures on the set for each column, or nothing if its factorisation failed.
+///
+/// Cycles (a set that comes back) are ended deterministically: from then on only the
+/// most negative pressure leaves and only the most negative gap joins per iteration; a
+/// second repeat ends the loop with Status::cycled on the last set whose pressures are all
+/// positive (docs/method.md §3).
+template <typename Scalar, typename SetSolver>
+Solution<Scalar> solve_active_set(const InfluenceTable<Scalar>& influence,
+                                  const Eigen::Ref<const Eigen::Matrix<Scalar, Eigen::Dynamic, 1>>& h,
+                                  const Loading<Scalar>& loading, const ActiveSetOptions<Scalar>& options,
+                                  SetSolver& set_solver) {
+  using Index = Eigen::Index;
+  using Vector = Eigen::Matrix<Scalar, Eigen::Dynamic, 1>;
+  using Matrix = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;
+  const Grid<Scalar>& grid = influence.grid();
+  check_undeformed_distance(grid, h);
+  const bool force_control = loading.control == Control::force;
+  if (force_control) Loading<Scalar>::force(loading.normal_force);  // validates Fn
+
+  const Index n_all = grid.size();
+  const Scalar area = grid.element_area();
+  const Scalar join_below = -options.gap_tolerance * h.cwiseAbs().maxCoeff();
+
+  Solution<Scalar> solution;
+  solution.pressure = Vector::Zero(n_all);
+  solution.in_contact = Solution<Scalar>::Mask::Constant(n_all, false);
+
+  // Step 1: the starting set (docs/norm.md §2).
+  const Scalar deepest = h.minCoeff();
+  Scalar approach = 0;
+  if (force_control) {
+    approach = approach_guess(Vector(h), area, influence.combined_modulus(), loading.normal_force);
+  } else if (deepest >= 0) {
+    solution.status = Status::no_contact;
+    solution.message = "no element has a negative undeformed distance";
+    return solution;
+  }
+  const Scalar start_below = approach + options.start_depth_fraction * (deepest - approach);
+  std::vector<Index> active;
+  for (Index k = 0; k < n_all; ++k) {
+    if (h(k) <= start_below) active.push_back(k);
+  }
+
+  auto store = [&](const std::vector<Index>& set, const Vector& pressure, Scalar delta) {
+    solution.pressure.setZero();
+    solution.in_contact.setConstant(false);
+    for (std::size_t r = 0; r < set.size(); ++r) {
+      const Scalar value = std::max(pressure(static_cast<Index>(r)), Scalar(0));
+      solution.pressure(set[r]) = value;
+      solution.in_contact(set[r]) = value > 0;
+    }
+    solution.approach = delta;
+    solution.normal_force = area * solution.pressure.sum();
+  };
+
+  std::set<std::vector<Index>> visited;
+  bool one_at_a_time = false;  // after a first cycle
+  std::vector<Index> admissible_set;  // last set with all pressures positive
+  Vector admissible_pressure;
+  Scalar admissible_approach = 0;
+  std::vector<bool> is_active(static_cast<std::size_t>(n_all), false);
+  Vector pressure;                  // the last solve's pressures, on `solved_set`
+  std::vector<Index> solved_set;
+  while (solution.iterations < options.max_iterations) {
+    if (!visited.insert(active).second) {
+      if (one_at_a_time && !admissible_set.empty()) {
+        store(admissible_set, admissible_pressure, admissible_approach);
+        solution.status = Status::cycled;
+        solution.message = "active set cycled; returned the last set with non-negative pressures";
+        return solution;
+      }
+      one_at_a_time = true;
+      visited.clear();
+      visited.insert(active);
+    }
+    ++solution.iterations;
+    // Step 2: solve on the current set.
+    const Index n = static_cast<Index>(active.size());
+    Matrix rhs(n, force_control ? 2 : 1);
+    for (Index r = 0; r < n; ++r) rhs(r, 0) = -h(active[static_cast<std::size_t>(r)]);
+    if (force_control) rhs.col(1).setOnes();
+    const std::optional<Matrix> parts = set_solver.solve(active, rhs);
+    solved_set = active;
+    if (!parts) {
+      solution.status = Status::numerical_issue;
+      solution.message = "factorisation of the system on the active set failed";
+      return solution;
+    }
+    if (force_control) {
+      // p = p_a + δ p_b with δ from dx·dy·Σp = Fn (docs/design.md §3).
+      approach = (loading.normal_force / area - parts->col(0).sum()) / parts->col(1).sum();
+      pressure = parts->col(0) + approach * parts->col(1);
+    } else {
+      pressure = parts->col(0);
+    }
+
+    // Step 3: elements with non-positive pressure leave.
+    std::vector<Index> kept;
+    if (one_at_a_time) {
+      Index most_negative = 0;
+      pressure.minCoeff(&most_negative);
+      for (Index r = 0; r < n; ++r) {
+        if (r != most_negative || pressure(r) > 0) kept.push_back(active[static_cast<std::size_t>(r)]);
+      }
+    } else {
+      for (Index r = 0; r < n; ++r) {
+        if (pressure(r) > 0) kept.push_back(active[static_cast<std::size_t>(r)]);
+      }
+    }
+    if (static_cast<Index>(kept.size()) < n) {
+      active.swap(kept);
+      continue;
+    }
+    admissible_set = active;
+    admissible_pressure = pressure;
+    admissible_approach = approach;
+
+    // Step 4: elements with negative deformed gap join. C p ≥ 0, so only elements with
+    // h − δ < 0 can have g < 0: only those are checked.
+    for (Index k : active) is_active[static_cast<std::size_t>(k)] = true;
+    std::vector<Index> candidates;
+    for (Index k = 0; k < n_all; ++k) {
+      if (!is_active[static_cast<std::size_t>(k)] && h(k) - approach < join_below) candidates.push_back(k);
+    }
+    for (Index k : active) is_active[static_cast<std::size_t>(k)] = false;
+    const Vector displacement = influence.displacement(candidates, active, pressure);
+    std::vector<Index> joining;
+    Scalar most_negative_gap = join_below;
+    for (std::size_t t = 0; t < candidates.size(); ++t) {
+      const Scalar gap = h(candidates[t]) - approach + displacement(static_cast<Index>(t));
+      if (gap >= join_below) continue;
+      if (!one_at_a_time) {
+        joining.push_back(candidates[t]);
+      } else if (gap < most_negative_gap) {
+        most_negative_gap = gap;
+        joining.assign(1, candidates[t]);
+      }
+    }
+    if (joining.empty()) {
+      store(active, pressure, approach);
+      solution.status = Status::converged;
+      solution.message = "contact set stable";
+      return solution;
+    }
+    active.insert(active.end(), joining.begin(), joining.end());
+    std::sort(active.begin(), active.end());
+  }
+  // The last iterate, its negative pressures clipped, so the caller can inspect it.
+  store(solved_set, pressure, approach);
+  solution.status = Status::iteration_limit;
+  solution.message = "active set still changing after " + std::to_string(solution.iterations) +
+                     " iterations";
+  return solution;
+}
+
+}  // namespace detail
+}  // namespace fastnorm
