@@ -1,24 +1,29 @@
 // fastnorm-solve: solves a .case file and compares with the result it carries.
 //
-//   fastnorm-solve CASE [--solver norm] [--control approach|force] [--write-case OUT] [--quiet]
+//   fastnorm-solve CASE [--solver NAME] [--control approach|force] [--compare]
+//                  [--write-case OUT] [--quiet]
 //
+// NAME: norm (default) | elliptic | polynomial[:G] | elliptic-edge[:K] | polynomial-edge[:G[:K]].
 // Prints one line `fn=<N> approach=<m> ncontact=<n> iterations=<k> solve_s=<s>`, followed on
 // the same line, when the case carries a result, by `ref_fn=<N> rel_fn_diff=<x>
-// max_abs_dp_over_pmax=<x> contact_mismatch=<n>`. Exit status: 0 solved, 1 the solver did
-// not converge, 2 bad input (the message names the file, line or argument; nothing written).
+// max_abs_dp_over_pmax=<x> contact_mismatch=<n>`, and with --compare by
+// `rel_fn_err_vs_norm=<x> contact_mismatch_vs_norm=<n> max_dp_over_pmax_vs_norm=<x>
+// speedup_vs_norm=<x>` (full NORM on the same case and control). Exit status: 0 solved,
+// 1 the solver gave no usable answer, 2 bad input (the message names the file, line or
+// argument; nothing written).
 #include <fastnorm/fastnorm.hpp>
 
 #include <chrono>
 #include <fstream>
-#include <functional>
 #include <iostream>
-#include <map>
+#include <utility>
 #include <string>
 
 namespace {
 
 const char* const usage =
-    "usage: fastnorm-solve CASE [--solver norm] [--control approach|force] [--write-case OUT] [--quiet]\n";
+    "usage: fastnorm-solve CASE [--solver NAME] [--control approach|force] [--compare] [--write-case OUT] [--quiet]\n"
+    "       NAME: norm | elliptic | polynomial[:G] | elliptic-edge[:K] | polynomial-edge[:G[:K]]\n";
 
 struct Arguments {
   std::string case_path;
@@ -26,6 +31,7 @@ struct Arguments {
   std::string control;  // empty: as the case's control line says
   std::string write_path;
   bool quiet = false;
+  bool compare = false;
 };
 
 struct UsageError : std::runtime_error {
@@ -51,6 +57,8 @@ Arguments parse(int argc, char** argv) {
       arguments.write_path = value();
     } else if (word == "--quiet") {
       arguments.quiet = true;
+    } else if (word == "--compare") {
+      arguments.compare = true;
     } else if (!word.empty() && word[0] == '-') {
       throw UsageError("unknown option '" + word + "'");
     } else if (arguments.case_path.empty()) {
@@ -63,38 +71,33 @@ Arguments parse(int argc, char** argv) {
   return arguments;
 }
 
-using Solve = std::function<fastnorm::Solution<>(const fastnorm::Case<>&, const Eigen::VectorXd&,
-                                                 const fastnorm::Loading<>&)>;
-
-// The solvers by name; later solvers add an entry here.
-const std::map<std::string, Solve>& solvers() {
-  static const std::map<std::string, Solve> table{
-      {"norm", [](const fastnorm::Case<>& problem, const Eigen::VectorXd& h, const fastnorm::Loading<>& loading) {
-         return fastnorm::NormSolver<>(problem.grid, problem.material).solve(h, loading);
-       }}};
-  return table;
+// Solves and times one run.
+std::pair<fastnorm::Solution<>, double> timed_solve(const fastnorm::AnySolver<>& solver, const fastnorm::Case<>& problem) {
+  const auto start = std::chrono::steady_clock::now();
+  auto solution = solver.solve(problem.undeformed_distance, problem.loading);
+  return {std::move(solution), std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()};
 }
 
+// Largest |p − p_ref| over the peak of p_ref.
+double max_difference_over_peak(const Eigen::VectorXd& pressure, const Eigen::VectorXd& reference) {
+  const double peak = reference.maxCoeff();
+  return peak > 0 ? (pressure - reference).cwiseAbs().maxCoeff() / peak : 0.0;
+}
+
+
 int run(const Arguments& arguments) {
-  const auto solver = solvers().find(arguments.solver);
-  if (solver == solvers().end()) {
-    std::string known;
-    for (const auto& entry : solvers()) known += (known.empty() ? "" : ", ") + entry.first;
-    throw UsageError("unknown solver '" + arguments.solver + "' (known: " + known + ")");
-  }
   fastnorm::Case<> problem = fastnorm::read_case_file(arguments.case_path);
+  const fastnorm::AnySolver<> solver(arguments.solver, problem.grid, problem.material);
   if (arguments.control == "approach") {
     problem.loading = fastnorm::Loading<>::approach();  // h as it stands
   } else if (arguments.control == "force" && problem.loading.control != fastnorm::Control::force) {
     throw UsageError("--control force needs a case whose control line gives the force");
   }
 
-  const auto start = std::chrono::steady_clock::now();
-  const auto solution = solver->second(problem, problem.undeformed_distance, problem.loading);
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const auto [solution, seconds] = timed_solve(solver, problem);
 
   if (!arguments.quiet) {
-    std::cout << "case " << problem.name << ": solver " << arguments.solver << ", "
+    std::cout << "case " << problem.name << ": solver " << solver.name() << ", "
               << (problem.loading.control == fastnorm::Control::force ? "force" : "approach")
               << " control, status " << fastnorm::to_string(solution.status) << " (" << solution.message << ")\n";
   }
@@ -104,12 +107,18 @@ int run(const Arguments& arguments) {
             << " solve_s=" << seconds;
   if (problem.result) {
     const auto& reference = *problem.result;
-    const double peak = reference.pressure.maxCoeff();
     std::cout << " ref_fn=" << reference.normal_force
               << " rel_fn_diff=" << std::abs(solution.normal_force - reference.normal_force) / reference.normal_force
-              << " max_abs_dp_over_pmax="
-              << (peak > 0 ? (solution.pressure - reference.pressure).cwiseAbs().maxCoeff() / peak : 0.0)
+              << " max_abs_dp_over_pmax=" << max_difference_over_peak(solution.pressure, reference.pressure)
               << " contact_mismatch=" << (solution.in_contact != (reference.pressure.array() > 0)).count();
+  }
+  if (arguments.compare) {
+    const auto [norm, norm_seconds] = timed_solve(fastnorm::AnySolver<>("norm", problem.grid, problem.material), problem);
+    std::cout << " rel_fn_err_vs_norm="
+              << (norm.normal_force > 0 ? std::abs(solution.normal_force / norm.normal_force - 1) : 0.0)
+              << " contact_mismatch_vs_norm=" << (solution.in_contact != norm.in_contact).count()
+              << " max_dp_over_pmax_vs_norm=" << max_difference_over_peak(solution.pressure, norm.pressure)
+              << " speedup_vs_norm=" << norm_seconds / seconds;
   }
   std::cout << '\n';
 
@@ -122,7 +131,7 @@ int run(const Arguments& arguments) {
     result.solve_seconds = seconds;
     result.pressure = solution.pressure;
     problem.result = result;
-    problem.source = "fastnorm-solve --solver " + arguments.solver;
+    problem.source = "fastnorm-solve --solver " + solver.name();
     std::ofstream out(arguments.write_path);
     if (!out) throw UsageError("cannot write '" + arguments.write_path + "'");
     fastnorm::write_case(out, problem);

@@ -38,7 +38,8 @@ enum class Status {
   converged,        ///< the contact set is stable and the Signorini conditions hold
   no_contact,       ///< approach control with every gap positive: zero pressure
   iteration_limit,  ///< the active-set loop reached Options::max_iterations
-  cycled,           ///< the set cycled (reduced bases only); the last admissible set is returned
+  cycled,           ///< reduced bases only: no set satisfies both conditions in the basis; the
+                    ///< last set whose pressures are all positive is returned (usable)
   numerical_issue,  ///< a factorisation failed (matrix not positive definite)
 };
 
@@ -75,7 +76,10 @@ struct Solution {
   std::string message;
 
   Eigen::Index contact_count() const { return in_contact.count(); }
-  bool ok() const { return status == Status::converged || status == Status::no_contact; }
+  /// The pressures are a usable answer: converged, no contact, or a resolved cycle.
+  bool ok() const {
+    return status == Status::converged || status == Status::no_contact || status == Status::cycled;
+  }
 };
 
 }  // namespace fastnorm

@@ -103,6 +103,21 @@ TEST_CASE("fastnorm-solve solves a case, writes it back and compares with its re
   fs::remove_all(dir);
 }
 
+TEST_CASE("fastnorm-solve runs a reduced solver and compares it with full NORM", "[cli]") {
+  const fs::path dir = scratch();
+  const fs::path input = write_sphere_case(dir);
+  const auto outcome = run_solver(input.string() + " --solver polynomial-edge:4:2 --compare");
+  INFO(outcome.output);
+  REQUIRE(outcome.status == 0);
+  CHECK_THAT(outcome.output, Contains("solver polynomial-edge:4:2"));
+  CHECK(field(outcome.output, "fn") == Approx(5e4).epsilon(1e-9));  // force control holds Fn exactly
+  CHECK(field(outcome.output, "rel_fn_err_vs_norm") < 1e-9);
+  CHECK(field(outcome.output, "contact_mismatch_vs_norm") >= 0);
+  CHECK(field(outcome.output, "max_dp_over_pmax_vs_norm") < 0.1);
+  CHECK(field(outcome.output, "speedup_vs_norm") > 0);
+  fs::remove_all(dir);
+}
+
 TEST_CASE("fastnorm-solve rejects bad input with status 2 and writes nothing", "[cli]") {
   const fs::path dir = scratch();
   const fs::path good = write_sphere_case(dir), bad = dir / "bad.case", out = dir / "out.case";
@@ -113,6 +128,7 @@ TEST_CASE("fastnorm-solve rejects bad input with status 2 and writes nothing", "
   };
   for (const Bad& c : {Bad{bad.string(), "bad.case:4"}, Bad{(dir / "missing.case").string(), "missing.case"},
                        Bad{good.string() + " --solver cg", "unknown solver 'cg'"},
+                       Bad{good.string() + " --solver polynomial:99", "grade"},
                        Bad{good.string() + " --control sideways", "--control"},
                        Bad{good.string() + " --bogus", "unknown option '--bogus'"},
                        Bad{good.string() + " --solver", "needs a value"}, Bad{"", "no CASE"}}) {

@@ -4,6 +4,7 @@
 #include <fastnorm/norm_solver.hpp>
 
 #include "support/complementarity.hpp"
+#include "support/surfaces.hpp"
 
 using Catch::Matchers::Contains;
 
@@ -11,20 +12,9 @@ namespace {
 
 const fastnorm::Material<> steel(2.1e11, 0.3);
 
-// A non-Hertzian surface: two bumps of different radii side by side and a waviness, so
-// that the contact has two patches, and approach control interpenetrates both.
-Eigen::VectorXd two_bumps(const fastnorm::Grid<>& grid, double approach) {
-  Eigen::VectorXd h(grid.size());
-  for (Eigen::Index k = 0; k < grid.size(); ++k) {
-    const double x = grid.x_of(k), y = grid.y_of(k);
-    const double left = (x * x) / (2 * 0.3) + (y + 2.2e-3) * (y + 2.2e-3) / (2 * 0.1);
-    const double right = (x * x) / (2 * 0.5) + (y - 2.0e-3) * (y - 2.0e-3) / (2 * 0.15) + 4e-6;
-    h(k) = std::min(left, right) + 1e-6 * std::sin(x / 7e-4) * std::cos(y / 9e-4) - approach;
-  }
-  return h;
-}
+using fastnorm::test::two_bumps;
 
-const fastnorm::Grid<> grid(36, 44, 0.2e-3, 0.15e-3, -3.5e-3, -3.225e-3);
+const fastnorm::Grid<> grid = fastnorm::test::two_bumps_grid();
 
 }  // namespace
 

@@ -1,0 +1,116 @@
+#include <catch2/catch.hpp>
+#include <fastnorm/any_solver.hpp>
+#include <fastnorm/hertz.hpp>
+#include <fastnorm/norm_solver.hpp>
+#include <fastnorm/reduced_solver.hpp>
+#include <limits>
+
+#include "support/surfaces.hpp"
+
+using Catch::Matchers::Contains;
+
+namespace {
+
+const fastnorm::Material<> steel(2.1e11, 0.3);
+
+// Never fewer elements than functions: every segment keeps one unknown per element, so
+// the reduced solver must reproduce full NORM.
+struct IdentityBasis : fastnorm::CoordinateBasis<IdentityBasis> {
+  Eigen::Index unknowns() const { return std::numeric_limits<Eigen::Index>::max(); }
+  std::string name() const { return "identity"; }
+  template <typename Scalar>
+  fastnorm::BasisBlock<Scalar> evaluate(const Eigen::Matrix<Scalar, Eigen::Dynamic, 1>& xi) const {
+    return fastnorm::BasisBlock<Scalar>::Identity(xi.size(), xi.size());
+  }
+};
+
+// A constant per segment, once or twice: the second has two equal columns, so Aᵀ C A is
+// singular, yet spans the same space and must give the same pressures.
+template <int Copies>
+struct ConstantBasis : fastnorm::CoordinateBasis<ConstantBasis<Copies>> {
+  Eigen::Index unknowns() const { return Copies; }
+  std::string name() const { return "constant"; }
+  template <typename Scalar>
+  fastnorm::BasisBlock<Scalar> evaluate(const Eigen::Matrix<Scalar, Eigen::Dynamic, 1>& xi) const {
+    return fastnorm::BasisBlock<Scalar>::Ones(xi.size(), Copies);
+  }
+};
+
+double relative_force_error(const fastnorm::Solution<>& solution, const fastnorm::Solution<>& reference) {
+  return std::abs(solution.normal_force / reference.normal_force - 1);
+}
+
+}  // namespace
+
+TEST_CASE("With an identity basis the reduced solver is full NORM", "[reduced]") {
+  const auto grid = fastnorm::test::two_bumps_grid();
+  const Eigen::VectorXd h = fastnorm::test::two_bumps(grid, 3e-5);
+  const fastnorm::NormSolver<> norm(grid, steel);
+  const fastnorm::ReducedSolver<IdentityBasis> identity(grid, steel);
+  for (const auto& loading : {fastnorm::Loading<>::approach(), fastnorm::Loading<>::force(2e3)}) {
+    const auto reference = norm.solve(h, loading);
+    const auto reduced = identity.solve(h, loading);
+    REQUIRE(reference.status == fastnorm::Status::converged);
+    REQUIRE(reduced.status == fastnorm::Status::converged);
+    CHECK(reduced.iterations == reference.iterations);
+    CHECK((reduced.in_contact == reference.in_contact).all());
+    CHECK((reduced.pressure - reference.pressure).cwiseAbs().maxCoeff() <= 1e-11 * reference.pressure.maxCoeff());
+    CHECK(reduced.approach == Approx(reference.approach).margin(1e-12 * h.cwiseAbs().maxCoeff()));
+  }
+}
+
+TEST_CASE("A rank-deficient basis takes the minimum-norm solve and the same answer", "[reduced]") {
+  const auto grid = fastnorm::test::two_bumps_grid();
+  const Eigen::VectorXd h = fastnorm::test::two_bumps(grid, 3e-5);
+  const auto single = fastnorm::ReducedSolver<ConstantBasis<1>>(grid, steel).solve(h, fastnorm::Loading<>::approach());
+  const auto doubled = fastnorm::ReducedSolver<ConstantBasis<2>>(grid, steel).solve(h, fastnorm::Loading<>::approach());
+  REQUIRE(single.ok());
+  REQUIRE(doubled.ok());
+  CHECK(doubled.status == single.status);
+  CHECK((doubled.pressure - single.pressure).cwiseAbs().maxCoeff() <= 1e-9 * single.pressure.maxCoeff());
+}
+
+TEST_CASE("Reduced solvers against full NORM on Hertz contacts", "[reduced][hertz]") {
+  // Measured relative force errors (approach control, 41 × 41 over ±1.25 semi-axes):
+  // see docs/method.md §4; bounds here are the targets, all met on Hertz.
+  struct Shape {
+    double radius_x, radius_y, force;
+  };
+  for (const Shape& shape : {Shape{0.3, 0.3, 5e4}, Shape{0.46, 0.3, 1e5}}) {
+    const auto hertz = fastnorm::hertz_from_force(shape.radius_x, shape.radius_y, steel.combined_modulus(), shape.force);
+    const auto grid = fastnorm::hertz_grid(hertz, 41, 1.25);
+    const Eigen::VectorXd h =
+        fastnorm::hertz_undeformed_distance(grid, shape.radius_x, shape.radius_y).array() - hertz.approach;
+    const auto reference = fastnorm::NormSolver<>(grid, steel).solve(h, fastnorm::Loading<>::approach());
+    REQUIRE(reference.status == fastnorm::Status::converged);
+    for (const auto& [name, bound] : std::vector<std::pair<std::string, double>>{
+             {"elliptic", 5e-4}, {"polynomial:4", 5e-4}, {"elliptic-edge", 2e-5}, {"polynomial-edge", 2e-5}}) {
+      const auto solution = fastnorm::AnySolver<>(name, grid, steel).solve(h, fastnorm::Loading<>::approach());
+      INFO(name << " on R = (" << shape.radius_x << ", " << shape.radius_y << "): force error "
+                << relative_force_error(solution, reference) << ", status " << fastnorm::to_string(solution.status));
+      REQUIRE(solution.ok());
+      CHECK(relative_force_error(solution, reference) <= bound);
+      CHECK((solution.in_contact != reference.in_contact).count() <= reference.contact_count() / 100);
+    }
+  }
+}
+
+TEST_CASE("Solvers are found by name", "[reduced][any]") {
+  const auto grid = fastnorm::test::two_bumps_grid();
+  CHECK(fastnorm::AnySolver<>("norm", grid, steel).name() == "norm");
+  CHECK(fastnorm::AnySolver<>("elliptic", grid, steel).name() == "elliptic");
+  CHECK(fastnorm::AnySolver<>("polynomial", grid, steel).name() == "polynomial:4");
+  CHECK(fastnorm::AnySolver<>("polynomial:7", grid, steel).name() == "polynomial:7");
+  CHECK(fastnorm::AnySolver<>("elliptic-edge", grid, steel).name() == "elliptic-edge:1");
+  CHECK(fastnorm::AnySolver<>("elliptic-edge:2", grid, steel).name() == "elliptic-edge:2");
+  CHECK(fastnorm::AnySolver<>("polynomial-edge", grid, steel).name() == "polynomial-edge:4:1");
+  CHECK(fastnorm::AnySolver<>("polynomial-edge:6:2", grid, steel).name() == "polynomial-edge:6:2");
+  CHECK_THROWS_WITH(fastnorm::AnySolver<>("cg", grid, steel), Contains("unknown solver 'cg'"));
+  CHECK_THROWS_WITH(fastnorm::AnySolver<>("polynomial:x", grid, steel), Contains("grade G"));
+  CHECK_THROWS_WITH(fastnorm::AnySolver<>("polynomial:40", grid, steel), Contains("grade"));
+  CHECK_THROWS_WITH(fastnorm::AnySolver<>("elliptic-edge:0", grid, steel), Contains("edge_elements"));
+  CHECK_THROWS_WITH(fastnorm::AnySolver<>("elliptic:3", grid, steel), Contains("too many"));
+  const Eigen::VectorXd h = fastnorm::test::two_bumps(grid, 3e-5);
+  CHECK_THROWS_WITH(fastnorm::AnySolver<>("elliptic", grid, steel).solve(h.head(3), fastnorm::Loading<>::approach()),
+                    Contains("undeformed_distance"));
+}

@@ -1,0 +1,26 @@
+#pragma once
+// Test problems shared by the solver tests.
+
+#include <algorithm>
+#include <cmath>
+#include <fastnorm/grid.hpp>
+
+namespace fastnorm::test {
+
+/// A non-Hertzian surface: two bumps of different radii side by side and a waviness, so
+/// that the contact has two patches (and approach control interpenetrates both).
+inline Eigen::VectorXd two_bumps(const fastnorm::Grid<>& grid, double approach) {
+  Eigen::VectorXd h(grid.size());
+  for (Eigen::Index k = 0; k < grid.size(); ++k) {
+    const double x = grid.x_of(k), y = grid.y_of(k);
+    const double left = (x * x) / (2 * 0.3) + (y + 2.2e-3) * (y + 2.2e-3) / (2 * 0.1);
+    const double right = (x * x) / (2 * 0.5) + (y - 2.0e-3) * (y - 2.0e-3) / (2 * 0.15) + 4e-6;
+    h(k) = std::min(left, right) + 1e-6 * std::sin(x / 7e-4) * std::cos(y / 9e-4) - approach;
+  }
+  return h;
+}
+
+/// The grid the two bumps are meant for.
+inline fastnorm::Grid<> two_bumps_grid() { return fastnorm::Grid<>(36, 44, 0.2e-3, 0.15e-3, -3.5e-3, -3.225e-3); }
+
+}  // namespace fastnorm::test
