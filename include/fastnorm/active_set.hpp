@@ -142,13 +142,32 @@ Solution<Scalar> solve_active_set(const InfluenceTable<Scalar>& influence,
     solution.normal_force = area * solution.pressure.sum();
   };
 
-  std::set<std::vector<Index>> visited;
+  Vector pressure;             // the last solve's pressures, on `solved_set`
   bool one_at_a_time = false;  // after a first cycle
+  // Candidates whose deformed gap is negative: all of them, or in one-at-a-time mode
+  // the most negative one.
+  auto joining_elements = [&](const std::vector<Index>& candidates) {
+    const Vector displacement = influence.displacement(candidates, active, pressure);
+    std::vector<Index> joining;
+    Scalar most_negative_gap = join_below;
+    for (std::size_t t = 0; t < candidates.size(); ++t) {
+      const Scalar gap = h(candidates[t]) - approach + displacement(static_cast<Index>(t));
+      if (gap >= join_below) continue;
+      if (!one_at_a_time) {
+        joining.push_back(candidates[t]);
+      } else if (gap < most_negative_gap) {
+        most_negative_gap = gap;
+        joining.assign(1, candidates[t]);
+      }
+    }
+    return joining;
+  };
+
+  std::set<std::vector<Index>> visited;
   std::vector<Index> admissible_set;  // last set with all pressures positive
   Vector admissible_pressure;
   Scalar admissible_approach = 0;
   std::vector<bool> is_active(static_cast<std::size_t>(n_all), false);
-  Vector pressure;                  // the last solve's pressures, on `solved_set`
   std::vector<Index> solved_set;
   while (solution.iterations < options.max_iterations) {
     if (!visited.insert(active).second) {
@@ -212,19 +231,7 @@ Solution<Scalar> solve_active_set(const InfluenceTable<Scalar>& influence,
       if (!is_active[static_cast<std::size_t>(k)] && h(k) - approach < join_below) candidates.push_back(k);
     }
     for (Index k : active) is_active[static_cast<std::size_t>(k)] = false;
-    const Vector displacement = influence.displacement(candidates, active, pressure);
-    std::vector<Index> joining;
-    Scalar most_negative_gap = join_below;
-    for (std::size_t t = 0; t < candidates.size(); ++t) {
-      const Scalar gap = h(candidates[t]) - approach + displacement(static_cast<Index>(t));
-      if (gap >= join_below) continue;
-      if (!one_at_a_time) {
-        joining.push_back(candidates[t]);
-      } else if (gap < most_negative_gap) {
-        most_negative_gap = gap;
-        joining.assign(1, candidates[t]);
-      }
-    }
+    const std::vector<Index> joining = joining_elements(candidates);
     if (joining.empty()) {
       store(active, pressure, approach);
       solution.status = Status::converged;

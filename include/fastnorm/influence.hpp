@@ -6,7 +6,6 @@
 
 #include <Eigen/Core>
 #include <cmath>
-#include <algorithm>
 #include <cstdlib>
 #include <type_traits>
 #include <vector>
@@ -57,9 +56,10 @@ Scalar love_coefficient(Scalar x, Scalar y, Scalar a, Scalar b, Scalar combined_
 /// The influence coefficients C_kl of a grid: displacement at the centre of element k
 /// (m) due to unit pressure (1 Pa) on element l.
 ///
-/// C_kl depends only on the offset (|i_k − i_l|, |j_k − j_l|): the kernel is even in x
-/// and in y, so the (2mx−1)(2my−1) Toeplitz table of offsets folds to the mx × my
-/// table of non-negative offsets that is stored here (docs/kernel.md §2). The N × N
+/// C_kl depends only on the offset (i_k − i_l, j_k − j_l): a two-level Toeplitz matrix with
+/// (2mx−1)(2my−1) offsets. The kernel is even in y, so the table stored here keeps the
+/// (2mx−1) × my offsets (di, |dj|): each of its columns, the coupling of two strips |dj|
+/// apart, is read forwards by every Toeplitz product (docs/kernel.md §2). The N × N
 /// matrix is never formed; `dense_block` fills the sub-block a direct solver needs.
 ///
 /// **Example**
@@ -80,13 +80,15 @@ class InfluenceTable {
   using Matrix = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;
 
   InfluenceTable(const Grid<Scalar>& grid, const Material<Scalar>& material)
-      : grid_(grid), combined_modulus_(material.combined_modulus()), table_(grid.mx(), grid.my()) {
+      : grid_(grid), combined_modulus_(material.combined_modulus()), table_(2 * grid.mx() - 1, grid.my()) {
     const Scalar a = grid.dx() / 2, b = grid.dy() / 2;
+    const Index centre = grid.mx() - 1;
     for (Index dj = 0; dj < grid.my(); ++dj) {
       for (Index di = 0; di < grid.mx(); ++di) {
-        table_(di, dj) = love_coefficient<Scalar>(static_cast<Scalar>(di) * grid.dx(),
-                                                  static_cast<Scalar>(dj) * grid.dy(), a, b,
-                                                  combined_modulus_);
+        table_(centre + di, dj) = love_coefficient<Scalar>(static_cast<Scalar>(di) * grid.dx(),
+                                                           static_cast<Scalar>(dj) * grid.dy(), a, b,
+                                                           combined_modulus_);
+        table_(centre - di, dj) = table_(centre + di, dj);  // even in x
       }
     }
   }
@@ -96,14 +98,14 @@ class InfluenceTable {
   Scalar combined_modulus() const { return combined_modulus_; }
 
   /// C for an offset of (di, dj) elements; either sign.
-  Scalar at_offset(Index di, Index dj) const { return table_(std::abs(di), std::abs(dj)); }
+  Scalar at_offset(Index di, Index dj) const { return table_(grid_.mx() - 1 + di, std::abs(dj)); }
 
   /// C_kl: displacement at element k due to unit pressure on element l (m/Pa).
   Scalar operator()(Index k, Index l) const {
     return at_offset(grid_.i_of(k) - grid_.i_of(l), grid_.j_of(k) - grid_.j_of(l));
   }
 
-  /// The folded table, table(di, dj) = C(di·dx, dj·dy), di < mx, dj < my.
+  /// The stored table: table()(mx − 1 + di, dj) = C(di·dx, dj·dy), |di| < mx, 0 ≤ dj < my.
   const Matrix& table() const { return table_; }
 
   /// Dense symmetric block C_II for the elements `set` (each < grid.size()).
@@ -147,40 +149,23 @@ class InfluenceTable {
       }
       const auto run_pressure = source_pressure.segment(static_cast<Index>(start), static_cast<Index>(length));
       for (Index t = 0; t < n_targets; ++t) {
-        result(t) += toeplitz_dot(table_.col(std::abs(target_j(t) - j)), target_i(t) - i0, run_pressure);
+        // Σ_n C(i_t − i0 − n, dj) p_n = Σ_n C(i0 + n − i_t, dj) p_n (even in x): forwards.
+        result(t) += table_.col(std::abs(target_j(t) - j))
+                         .segment(grid_.mx() - 1 + i0 - target_i(t), static_cast<Index>(length))
+                         .dot(run_pressure);
       }
       start += length;
     }
     return result;
   }
 
-  /// Σ_n column(|offset − n|) · values(n): one row of a Toeplitz block times a vector,
-  /// as two contiguous dot products (n ≤ offset reads the column backwards).
-  template <typename Column, typename Values>
-  static Scalar toeplitz_dot(const Column& column, Index offset, const Values& values) {
-    const Index length = values.size();
-    Scalar sum = 0;
-    if (offset >= 0) {  // n = 0..min(offset, length−1): index offset − n, descending
-      const Index count = std::min(offset, length - 1) + 1;
-      sum += column.segment(offset - count + 1, count).reverse().dot(values.head(count));
-    }
-    const Index first = std::max<Index>(offset + 1, 0);  // n ≥ first: index n − offset, ascending
-    if (first < length) sum += column.segment(first - offset, length - first).dot(values.tail(length - first));
-    return sum;
-  }
-
-  /// The Toeplitz block C(|first_row + m − first_column − n|, |dj|) for m < rows,
-  /// n < columns: the coupling of two runs of a strip pair `dj` apart, column by column.
-  void fill_toeplitz(Index row_offset, Index dj, Matrix& block) const {
+  /// The Toeplitz block C(row_offset + m − n, dj) for m < block.rows(), n < block.cols():
+  /// the coupling of two runs of strips dj apart whose first elements are row_offset
+  /// apart in x. Each of its columns is a forward slice of one table column.
+  void fill_toeplitz(Index row_offset, Index dj, Eigen::Ref<Matrix> block) const {
     const auto column = table_.col(std::abs(dj));
     for (Index n = 0; n < block.cols(); ++n) {
-      const Index offset = row_offset - n;  // block(m, n) = column(|offset + m|)
-      const Index descending = std::min<Index>(std::max<Index>(-offset, 0), block.rows());
-      if (descending > 0) block.col(n).head(descending) = column.segment(-offset - descending + 1, descending).reverse();
-      if (descending < block.rows()) {
-        block.col(n).tail(block.rows() - descending) =
-            column.segment(offset + descending, block.rows() - descending);
-      }
+      block.col(n) = column.segment(grid_.mx() - 1 + row_offset - n, block.rows());
     }
   }
 

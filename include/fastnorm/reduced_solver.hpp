@@ -113,32 +113,52 @@ class GalerkinSetSolver {
     return at != old.end() && *at == segment ? static_cast<Index>(at - old.begin()) : -1;
   }
 
-  /// Lower triangle of Aᵀ C_II A, block (t, s) for t ≥ s = A_tᵀ C_ts A_s.
+  /// Lower triangle of Aᵀ C_II A, block (t, s) for t ≥ s = A_tᵀ C_ts A_s. Per source
+  /// segment s, the Toeplitz blocks C_ts of all targets t ≥ s that changed are stacked into
+  /// one tall matrix and multiplied by A_s in one product (docs/method.md §3).
   void assemble(Assembly& next) {
     std::vector<Index> old_index;
     for (const Segment& segment : next.segments) old_index.push_back(previous_index(segment));
-    Matrix coupling, half;
+    std::vector<std::size_t> targets;
     for (std::size_t s = 0; s < next.segments.size(); ++s) {
       const Segment& source = next.segments[s];
       const Index q_s = unknowns_of(source.count);
+      targets.clear();
+      Index rows = 0;
       for (std::size_t t = s; t < next.segments.size(); ++t) {
-        const Segment& target = next.segments[t];
-        const Index q_t = unknowns_of(target.count);
-        auto block = next.matrix.block(next.offsets[t], next.offsets[s], q_t, q_s);
+        const Index q_t = unknowns_of(next.segments[t].count);
         if (old_index[s] >= 0 && old_index[t] >= 0) {  // both unchanged: copy
-          block = previous_.matrix.block(previous_.offsets[static_cast<std::size_t>(old_index[t])],
-                                         previous_.offsets[static_cast<std::size_t>(old_index[s])], q_t, q_s);
-          continue;
-        }
-        // C_ts(m, n) = C(|i_t + m − i_s − n|, |j_t − j_s|): one column of the table.
-        coupling.resize(target.count, source.count);
-        influence_.fill_toeplitz(target.first - source.first, target.strip - source.strip, coupling);
-        if (is_identity(source.count)) {
-          half = coupling;
+          next.matrix.block(next.offsets[t], next.offsets[s], q_t, q_s) =
+              previous_.matrix.block(previous_.offsets[static_cast<std::size_t>(old_index[t])],
+                                     previous_.offsets[static_cast<std::size_t>(old_index[s])], q_t, q_s);
         } else {
-          half.noalias() = coupling * basis_of(source.count);
+          targets.push_back(t);
+          rows += next.segments[t].count;
         }
-        if (is_identity(target.count)) block = half; else block.noalias() = basis_of(target.count).transpose() * half;
+      }
+      if (targets.empty()) continue;
+      // C_ts(m, n) = C(|i_t + m − i_s − n|, |j_t − j_s|): one column of the table each.
+      coupling_.resize(rows, source.count);
+      Index row = 0;
+      for (std::size_t t : targets) {
+        const Segment& target = next.segments[t];
+        influence_.fill_toeplitz(target.first - source.first, target.strip - source.strip,
+                                 coupling_.middleRows(row, target.count));
+        row += target.count;
+      }
+      const bool source_identity = is_identity(source.count);
+      if (!source_identity) times_basis_.noalias() = coupling_ * basis_of(source.count);
+      const Matrix& half = source_identity ? coupling_ : times_basis_;
+      row = 0;
+      for (std::size_t t : targets) {
+        const Segment& target = next.segments[t];
+        auto block = next.matrix.block(next.offsets[t], next.offsets[s], unknowns_of(target.count), q_s);
+        if (is_identity(target.count)) {
+          block = half.middleRows(row, target.count);
+        } else {
+          block.noalias() = basis_of(target.count).transpose() * half.middleRows(row, target.count);
+        }
+        row += target.count;
       }
     }
   }
@@ -147,6 +167,7 @@ class GalerkinSetSolver {
   const Basis& basis_;
   std::vector<Matrix> blocks_;
   Assembly previous_;
+  Matrix coupling_, times_basis_;  // workspace of assemble()
 };
 
 }  // namespace detail
