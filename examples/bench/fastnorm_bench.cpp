@@ -7,8 +7,10 @@
 // stored approach (docs/validation.md §2), as the accuracy of the reduced solvers is defined.
 // One line per problem:
 //   case=<name> ncontact=<n> norm_s=<t> <solver>_s=<t> … err_<solver>=<x> … speedup_<solver>=<x> …
-// err = |Fn/Fn_norm − 1|; speedup = norm_s / <solver>_s; <solver> is the solver's name with
-// ':' and '-' replaced by '_' (polynomial:4 → polynomial_4).
+// Times are medians over the repeats; err = |Fn/Fn_norm − 1|; speedup = median over the repeats
+// of NORM's time / the solver's time, both measured in the same repeat; <solver> is the
+// solver's name with ':' and '-' replaced by '_' (polynomial:4 → polynomial_4). A solve that
+// did not converge adds status_<solver>=<status>.
 #include <fastnorm/fastnorm.hpp>
 
 #include <algorithm>
@@ -20,17 +22,10 @@
 
 namespace {
 
-template <typename Run>
-double median_seconds(int repeats, Run run) {
-  std::vector<double> times;
-  for (int r = 0; r < repeats; ++r) {
-    const auto start = std::chrono::steady_clock::now();
-    run();
-    times.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
-  }
-  std::sort(times.begin(), times.end());
-  const std::size_t middle = times.size() / 2;
-  return times.size() % 2 ? times[middle] : (times[middle - 1] + times[middle]) / 2;
+double median(std::vector<double> values) {
+  std::sort(values.begin(), values.end());
+  const std::size_t middle = values.size() / 2;
+  return values.size() % 2 ? values[middle] : (values[middle - 1] + values[middle]) / 2;
 }
 
 std::vector<std::string> split(const std::string& text) {
@@ -43,6 +38,7 @@ std::vector<std::string> split(const std::string& text) {
 std::string label(std::string name) {
   std::replace(name.begin(), name.end(), ':', '_');
   std::replace(name.begin(), name.end(), '-', '_');
+  std::replace(name.begin(), name.end(), ' ', '_');
   return name;
 }
 
@@ -54,26 +50,38 @@ struct Problem {
   fastnorm::Loading<> loading;
 };
 
+// Each repeat runs every solver once, NORM first, so that a slow spell of the machine
+// touches all of them alike; speed-ups are medians of the per-repeat ratios.
 void bench(const Problem& problem, const std::vector<std::string>& solver_names, int repeats) {
-  const fastnorm::AnySolver<> norm("norm", problem.grid, problem.material);
-  fastnorm::Solution<> reference;
-  const double norm_seconds = median_seconds(repeats, [&] { reference = norm.solve(problem.h, problem.loading); });
+  std::vector<fastnorm::AnySolver<>> solvers{fastnorm::AnySolver<>("norm", problem.grid, problem.material)};
+  for (const auto& name : solver_names) solvers.emplace_back(name, problem.grid, problem.material);
+  std::vector<fastnorm::Solution<>> solutions(solvers.size());
+  std::vector<std::vector<double>> seconds(solvers.size());
+  for (int r = 0; r < repeats; ++r) {
+    for (std::size_t s = 0; s < solvers.size(); ++s) {
+      const auto start = std::chrono::steady_clock::now();
+      solutions[s] = solvers[s].solve(problem.h, problem.loading);
+      seconds[s].push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+    }
+  }
+  const fastnorm::Solution<>& reference = solutions.front();
   std::ostringstream times, errors, speedups;
   times.precision(4);
   errors.precision(3);
   speedups.precision(3);
-  for (const auto& name : solver_names) {
-    const fastnorm::AnySolver<> solver(name, problem.grid, problem.material);
-    fastnorm::Solution<> solution;
-    const double seconds = median_seconds(repeats, [&] { solution = solver.solve(problem.h, problem.loading); });
-    const std::string key = label(solver.name());
-    times << ' ' << key << "_s=" << seconds;
-    errors << " err_" << key << '=' << std::abs(solution.normal_force / reference.normal_force - 1);
-    if (!solution.ok()) errors << " status_" << key << "=" << label(fastnorm::to_string(solution.status));
-    speedups << " speedup_" << key << '=' << norm_seconds / seconds;
+  for (std::size_t s = 1; s < solvers.size(); ++s) {
+    const std::string key = label(solvers[s].name());
+    std::vector<double> ratios;
+    for (int r = 0; r < repeats; ++r) ratios.push_back(seconds[0][static_cast<std::size_t>(r)] / seconds[s][static_cast<std::size_t>(r)]);
+    times << ' ' << key << "_s=" << median(seconds[s]);
+    errors << " err_" << key << '=' << std::abs(solutions[s].normal_force / reference.normal_force - 1);
+    if (solutions[s].status != fastnorm::Status::converged) {
+      errors << " status_" << key << "=" << label(fastnorm::to_string(solutions[s].status));
+    }
+    speedups << " speedup_" << key << '=' << median(ratios);
   }
   std::cout.precision(4);
-  std::cout << "case=" << problem.name << " ncontact=" << reference.contact_count() << " norm_s=" << norm_seconds
+  std::cout << "case=" << problem.name << " ncontact=" << reference.contact_count() << " norm_s=" << median(seconds[0])
             << times.str() << errors.str() << speedups.str() << std::endl;
 }
 

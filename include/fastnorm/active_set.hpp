@@ -89,10 +89,9 @@ Scalar approach_guess(const Eigen::Matrix<Scalar, Eigen::Dynamic, 1>& h0, Scalar
 /// right-hand sides over it (n × 1: −h_I; n × 2 in force control: −h0_I and 1) and returns
 /// the pressures on the set for each column, or nothing if its factorisation failed.
 ///
-/// Cycles (a set that comes back) are ended deterministically: from then on only the
-/// most negative pressure leaves and only the most negative gap joins per iteration; a
-/// second repeat ends the loop with Status::cycled on the last set whose pressures are all
-/// positive (docs/method.md §3).
+/// Cycles are ended deterministically: when a set comes back, the loop stops with
+/// Status::cycled and the last set whose pressures were all positive. (A cycle contains a
+/// join, and joins follow only such a set, so one exists; docs/method.md §3.)
 template <typename Scalar, typename SetSolver>
 Solution<Scalar> solve_active_set(const InfluenceTable<Scalar>& influence,
                                   const Eigen::Ref<const Eigen::Matrix<Scalar, Eigen::Dynamic, 1>>& h,
@@ -142,44 +141,20 @@ Solution<Scalar> solve_active_set(const InfluenceTable<Scalar>& influence,
     solution.normal_force = area * solution.pressure.sum();
   };
 
-  Vector pressure;             // the last solve's pressures, on `solved_set`
-  bool one_at_a_time = false;  // after a first cycle
-  // Candidates whose deformed gap is negative: all of them, or in one-at-a-time mode
-  // the most negative one.
-  auto joining_elements = [&](const std::vector<Index>& candidates) {
-    const Vector displacement = influence.displacement(candidates, active, pressure);
-    std::vector<Index> joining;
-    Scalar most_negative_gap = join_below;
-    for (std::size_t t = 0; t < candidates.size(); ++t) {
-      const Scalar gap = h(candidates[t]) - approach + displacement(static_cast<Index>(t));
-      if (gap >= join_below) continue;
-      if (!one_at_a_time) {
-        joining.push_back(candidates[t]);
-      } else if (gap < most_negative_gap) {
-        most_negative_gap = gap;
-        joining.assign(1, candidates[t]);
-      }
-    }
-    return joining;
-  };
-
   std::set<std::vector<Index>> visited;
   std::vector<Index> admissible_set;  // last set with all pressures positive
   Vector admissible_pressure;
   Scalar admissible_approach = 0;
   std::vector<bool> is_active(static_cast<std::size_t>(n_all), false);
+  Vector pressure;  // the last solve's pressures, on `solved_set`
   std::vector<Index> solved_set;
   while (solution.iterations < options.max_iterations) {
     if (!visited.insert(active).second) {
-      if (one_at_a_time && !admissible_set.empty()) {
-        store(admissible_set, admissible_pressure, admissible_approach);
-        solution.status = Status::cycled;
-        solution.message = "active set cycled; returned the last set with non-negative pressures";
-        return solution;
-      }
-      one_at_a_time = true;
-      visited.clear();
-      visited.insert(active);
+      FASTNORM_ASSERT(!admissible_set.empty());
+      store(admissible_set, admissible_pressure, admissible_approach);
+      solution.status = Status::cycled;
+      solution.message = "active set cycled; returned the last set with positive pressures";
+      return solution;
     }
     ++solution.iterations;
     // Step 2: solve on the current set.
@@ -204,16 +179,8 @@ Solution<Scalar> solve_active_set(const InfluenceTable<Scalar>& influence,
 
     // Step 3: elements with non-positive pressure leave.
     std::vector<Index> kept;
-    if (one_at_a_time) {
-      Index most_negative = 0;
-      pressure.minCoeff(&most_negative);
-      for (Index r = 0; r < n; ++r) {
-        if (r != most_negative || pressure(r) > 0) kept.push_back(active[static_cast<std::size_t>(r)]);
-      }
-    } else {
-      for (Index r = 0; r < n; ++r) {
-        if (pressure(r) > 0) kept.push_back(active[static_cast<std::size_t>(r)]);
-      }
+    for (Index r = 0; r < n; ++r) {
+      if (pressure(r) > 0) kept.push_back(active[static_cast<std::size_t>(r)]);
     }
     if (static_cast<Index>(kept.size()) < n) {
       active.swap(kept);
@@ -231,7 +198,13 @@ Solution<Scalar> solve_active_set(const InfluenceTable<Scalar>& influence,
       if (!is_active[static_cast<std::size_t>(k)] && h(k) - approach < join_below) candidates.push_back(k);
     }
     for (Index k : active) is_active[static_cast<std::size_t>(k)] = false;
-    const std::vector<Index> joining = joining_elements(candidates);
+    const Vector displacement = influence.displacement(candidates, active, pressure);
+    std::vector<Index> joining;
+    for (std::size_t t = 0; t < candidates.size(); ++t) {
+      if (h(candidates[t]) - approach + displacement(static_cast<Index>(t)) < join_below) {
+        joining.push_back(candidates[t]);
+      }
+    }
     if (joining.empty()) {
       store(active, pressure, approach);
       solution.status = Status::converged;
