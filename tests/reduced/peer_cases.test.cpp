@@ -20,7 +20,7 @@ struct Bound {
 // ≤ 2e-5 with the contact set within 0.5 %. Measured maxima over the 20 routine cases
 // (docs/method.md §4): elliptic 5.03e-4 (wr_y3.0_psi0.0_right: target missed by 0.6 %),
 // polynomial:4 4.2e-4, elliptic-edge:1 4.7e-5, polynomial-edge:4:1 4.0e-5 (target missed
-// on three cases; contact mismatch ≤ 0.43 %), polynomial-edge:4:2 8.5e-6, elliptic-edge:2
+// on two cases, 2.06e-5 and 4.04e-5; contact mismatch ≤ 0.43 %), polynomial-edge:4:2 8.5e-6, elliptic-edge:2
 // 2.8e-5 (wr_y5.0_psi0.0_right; 7.6e-6 elsewhere). Bounds: the target where it is met,
 // else the measured maximum rounded up.
 const std::vector<Bound> bounds{
