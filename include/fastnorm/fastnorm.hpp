@@ -16,3 +16,4 @@
 #include "fastnorm/any_solver.hpp"
 #include "fastnorm/hertz.hpp"
 #include "fastnorm/case_file.hpp"
+#include "fastnorm/wheelrail.hpp"

@@ -12,6 +12,8 @@
   template class fastnorm::ReducedSolver<fastnorm::PolynomialBasis, Scalar>;     \
   template class fastnorm::ReducedSolver<fastnorm::PolynomialEdgeBasis, Scalar>; \
   template class fastnorm::AnySolver<Scalar>;                    \
+  template class fastnorm::wheelrail::S1002<Scalar>;             \
+  template class fastnorm::wheelrail::Uic60<Scalar>;             \
   template struct fastnorm::Solution<Scalar>;                    \
   template struct fastnorm::HertzContact<Scalar>;                \
   template fastnorm::Case<Scalar> fastnorm::read_case<Scalar>(std::istream&, const std::string&); \

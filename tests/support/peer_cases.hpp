@@ -1,6 +1,6 @@
 #pragma once
-// Locates CONTACT's reference cases (../shared/peer-cases beside the repository, or the
-// folder named by the environment variable FASTNORM_PEER_CASES).
+// Locates the shared reference data beside the repository: CONTACT's cases
+// (../shared/peer-cases, or FASTNORM_PEER_CASES) and the MBench profiles (../shared/profiles).
 
 #include <algorithm>
 #include <cstdlib>
@@ -13,6 +13,14 @@ namespace fastnorm::test {
 inline std::string peer_cases_dir() {
   const char* from_environment = std::getenv("FASTNORM_PEER_CASES");
   return from_environment ? from_environment : FASTNORM_PEER_CASES_DIR;
+}
+
+/// The sampled Manchester-benchmark profile `name` (../shared/profiles, or the folder
+/// named by FASTNORM_PROFILES), or "" when it is absent (the caller then WARNs and skips).
+inline std::string shared_profile(const std::string& name) {
+  const char* from_environment = std::getenv("FASTNORM_PROFILES");
+  const std::filesystem::path path = std::filesystem::path(from_environment ? from_environment : FASTNORM_PROFILES_DIR) / name;
+  return std::filesystem::is_regular_file(path) ? path.string() : std::string();
 }
 
 /// Sorted paths of the peer cases whose file name starts with `prefix`; empty when the
