@@ -44,14 +44,20 @@ struct HertzShape {
   Scalar k_minus_e_over_e2;
 };
 
-/// The shape for radii R_x, R_y, which must be positive and finite, like E*.
-/// @throws fastnorm::invalid_argument naming the offending argument
+/// Rejects radii that are not positive and finite.
 template <typename Scalar>
-HertzShape<Scalar> hertz_shape(Scalar radius_x, Scalar radius_y, Scalar combined_modulus) {
+void check_radii(Scalar radius_x, Scalar radius_y) {
   FASTNORM_CHECK(std::isfinite(radius_x) && radius_x > 0,
                  describe("hertz: radius_x must be positive and finite (m)", radius_x));
   FASTNORM_CHECK(std::isfinite(radius_y) && radius_y > 0,
                  describe("hertz: radius_y must be positive and finite (m)", radius_y));
+}
+
+/// The shape for radii R_x, R_y, which must be positive and finite, like E*.
+/// @throws fastnorm::invalid_argument naming the offending argument
+template <typename Scalar>
+HertzShape<Scalar> hertz_shape(Scalar radius_x, Scalar radius_y, Scalar combined_modulus) {
+  check_radii(radius_x, radius_y);
   FASTNORM_CHECK(std::isfinite(combined_modulus) && combined_modulus > 0,
                  describe("hertz: combined_modulus must be positive and finite (Pa)",
                           combined_modulus));
@@ -139,7 +145,7 @@ HertzContact<Scalar> hertz_from_approach(Scalar radius_x, Scalar radius_y, Scala
 template <typename Scalar>
 Eigen::Matrix<Scalar, Eigen::Dynamic, 1> hertz_undeformed_distance(const Grid<Scalar>& grid,
                                                                     Scalar radius_x, Scalar radius_y) {
-  detail::hertz_shape(radius_x, radius_y, Scalar(1));  // validates the radii
+  detail::check_radii(radius_x, radius_y);
   Eigen::Matrix<Scalar, Eigen::Dynamic, 1> h(grid.size());
   for (Eigen::Index k = 0; k < grid.size(); ++k) {
     const Scalar x = grid.x_of(k), y = grid.y_of(k);

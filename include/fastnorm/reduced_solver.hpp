@@ -81,9 +81,6 @@ class GalerkinSetSolver {
     return pressure;
   }
 
-  /// Unknowns of the last set solved (for reports).
-  Index last_unknowns() const { return previous_.matrix.rows(); }
-
  private:
   struct Assembly {
     std::vector<Segment> segments;

@@ -147,12 +147,6 @@ class CubicSpline {
     for (std::size_t k = n - 1; k-- > 0;) second_[k] = (rhs[k] - width(k) * second_[k + 1]) / diagonal[k];
   }
 
-  /// Index k ≥ 1 of the interval [t_{k−1}, t_k] holding t (clamped to the ends).
-  std::size_t interval(double t) const {
-    const auto above = static_cast<std::size_t>(std::upper_bound(t_.begin(), t_.end(), t) - t_.begin());
-    return std::min(std::max<std::size_t>(above, 1), t_.size() - 1);
-  }
-
   /// v and dv/dt at t in interval k.
   ProfileValue<double> evaluate(double t, std::size_t k) const {
     const double width = t_[k] - t_[k - 1], a = (t_[k] - t) / width, b = 1 - a;
@@ -206,10 +200,11 @@ class SplineProfile {
     double s = low + (high - low) * (y - ys[k - 1]) / (ys[k] - ys[k - 1]);
     const double tolerance = 8 * std::numeric_limits<double>::epsilon() * (std::abs(ys[k - 1]) + std::abs(ys[k]));
     for (int step = 0; step < 100; ++step) {
-      const double residual = y_.evaluate(s, k).value - y;
+      const auto along_y = y_.evaluate(s, k);
+      const double residual = along_y.value - y;
       if (std::abs(residual) <= tolerance) break;
       if (residual < 0) low = s; else high = s;
-      const double next = s - residual / y_.evaluate(s, k).slope;
+      const double next = s - residual / along_y.slope;
       s = (next >= low && next <= high) ? next : (low + high) / 2;
     }
     const auto along_y = y_.evaluate(s, k), along_z = z_.evaluate(s, k);
