@@ -1,5 +1,4 @@
 // fastnorm-solve as a user runs it: output line, --write-case, exit statuses, messages.
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <catch2/catch.hpp>
@@ -10,39 +9,17 @@
 #include <string>
 
 #include "support/peer_cases.hpp"
+#include "support/run_command.hpp"
 
 using Catch::Matchers::Contains;
 namespace fs = std::filesystem;
 
 namespace {
 
-struct Outcome {
-  int status;
-  std::string output;  // stdout and stderr
-};
+using fastnorm::test::field;
+using fastnorm::test::Outcome;
 
-Outcome run_solver(const std::string& arguments) {
-  const std::string command = std::string(FASTNORM_SOLVE_EXE) + " " + arguments + " 2>&1";
-  FILE* pipe = popen(command.c_str(), "r");
-  REQUIRE(pipe != nullptr);
-  std::string output;
-  char buffer[4096];
-  while (std::fgets(buffer, sizeof buffer, pipe)) output += buffer;
-  const int raw = pclose(pipe);
-  return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, output};
-}
-
-// The value of `name=value` where name starts a word of the output.
-double field(const std::string& output, const std::string& name) {
-  const std::string key = name + "=";
-  for (auto at = output.find(key); at != std::string::npos; at = output.find(key, at + 1)) {
-    if (at == 0 || output[at - 1] == ' ' || output[at - 1] == '\n') {
-      return std::stod(output.substr(at + key.size()));
-    }
-  }
-  FAIL("no field '" << name << "' in the output");
-  return 0;
-}
+Outcome run_solver(const std::string& arguments) { return fastnorm::test::run_command(FASTNORM_SOLVE_EXE, arguments); }
 
 // A scratch folder per test run.
 fs::path scratch() {

@@ -1,0 +1,209 @@
+#pragma once
+/// @file contact_search.hpp
+/// Rigid contact search along the contact locus: the vertical gap between each wheel and
+/// its rail, its local minima, and the interpenetration regions that become contact patches
+/// (docs/wheel-rail.md §3, from ../shared/docs/wheelset-geometry.md §3–4).
+
+#include <Eigen/Core>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <optional>
+#include <vector>
+
+#include "fastnorm/error.hpp"
+#include "fastnorm/wheelrail/track.hpp"
+#include "fastnorm/wheelrail/wheelset.hpp"
+
+namespace fastnorm::wheelrail {
+
+/// How the contact search samples the locus and groups what it finds (m, rad).
+struct SearchOptions {
+  double step = 0.05e-3;               ///< sampling of the wheel profile coordinate y_w
+  double separation_distance = 8e-3;   ///< regions farther apart (rail points) stay separate patches
+  double separation_angle = 0.5;       ///< ... as do regions whose mean inclinations differ by more
+};
+
+/// The gap at one locus point.
+struct GapSample {
+  Wheelset::LocusPoint wheel;  ///< the wheel point on the locus
+  double rail_z = 0;           ///< rail height below it (m, down)
+  double rail_slope = 0;       ///< dZ/dy of the rail there
+  double gap = std::numeric_limits<double>::infinity();  ///< Z_rail − z_wheel (m, > 0 separated); ∞ off the rail
+};
+
+/// An interpenetration region of one wheel: consecutive locus samples with gap < 0, plus
+/// its penetration-weighted centre and inclination (the contact reference of its patch).
+struct ContactRegion {
+  Side side = Side::right;
+  std::vector<GapSample> slices;  ///< the penetrating samples, by increasing y_w
+  GapSample deepest;              ///< the sample of largest interpenetration
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();  ///< weighted centre on the rail (track frame, m)
+  double inclination = 0;         ///< weighted mean rail inclination δ = atan(dZ/dy) (rad)
+  double weight = 0;              ///< total weight (for merging)
+};
+
+/// The gap between `side`'s wheel and rail at wheel profile coordinate y_w.
+inline GapSample gap_at(const Track& track, const Wheelset& wheelset, Side side, double profile_y,
+                        const WheelsetPose& pose, const Eigen::Matrix3d& rotation) {
+  GapSample sample;
+  sample.wheel = wheelset.locus(side, profile_y, pose, rotation);
+  if (const auto rail = track.rail_height(side, sample.wheel.point.y())) {
+    sample.rail_z = rail->value;
+    sample.rail_slope = rail->slope;
+    sample.gap = rail->value - sample.wheel.point.z();
+  }
+  return sample;
+}
+
+/// The gap sampled every `options.step` over the wheel profile.
+inline std::vector<GapSample> sample_gap(const Track& track, const Wheelset& wheelset, Side side,
+                                         const WheelsetPose& pose, const SearchOptions& options = {}) {
+  FASTNORM_CHECK(std::isfinite(options.step) && options.step > 0,
+                 fastnorm::detail::describe("SearchOptions: step must be positive (m)", options.step));
+  const auto& profile = wheelset.profile();
+  const auto count = static_cast<std::size_t>(std::ceil((profile.y_max - profile.y_min) / options.step));
+  const Eigen::Matrix3d rotation = Wheelset::rotation(pose);
+  std::vector<GapSample> samples;
+  samples.reserve(count + 1);
+  for (std::size_t k = 0; k <= count; ++k) {
+    const double y_w = std::min(profile.y_max, profile.y_min + static_cast<double>(k) * options.step);
+    samples.push_back(gap_at(track, wheelset, side, y_w, pose, rotation));
+  }
+  return samples;
+}
+
+/// Local minima of the gap (tread, flange root, flange …), each refined to 1e-9 m in y_w
+/// by golden-section search between its sampled neighbours; by increasing y_w.
+inline std::vector<GapSample> gap_minima(const Track& track, const Wheelset& wheelset, Side side,
+                                         const WheelsetPose& pose, const SearchOptions& options = {}) {
+  const auto samples = sample_gap(track, wheelset, side, pose, options);
+  const Eigen::Matrix3d rotation = Wheelset::rotation(pose);
+  std::vector<GapSample> minima;
+  for (std::size_t k = 0; k < samples.size(); ++k) {
+    const double here = samples[k].gap;
+    if (!std::isfinite(here)) continue;
+    const double before = k > 0 ? samples[k - 1].gap : std::numeric_limits<double>::infinity();
+    const double after = k + 1 < samples.size() ? samples[k + 1].gap : std::numeric_limits<double>::infinity();
+    if (!(here <= before && here < after)) continue;
+    const double low = samples[k > 0 ? k - 1 : k].wheel.profile_y;
+    const double high = samples[k + 1 < samples.size() ? k + 1 : k].wheel.profile_y;
+    const auto best = detail::golden_minimum(
+        [&](double y_w) { return gap_at(track, wheelset, side, y_w, pose, rotation).gap; }, low, high, 1e-9);
+    minima.push_back(gap_at(track, wheelset, side, best.first, pose, rotation));
+  }
+  return minima;
+}
+
+/// The smallest gap of `side` (m): how far the wheelset may drop before that wheel touches.
+/// @throws fastnorm::invalid_argument if the wheel is nowhere above its rail
+inline GapSample smallest_gap(const Track& track, const Wheelset& wheelset, Side side, const WheelsetPose& pose,
+                              const SearchOptions& options = {}) {
+  const auto minima = gap_minima(track, wheelset, side, pose, options);
+  FASTNORM_CHECK(!minima.empty(), std::string("contact search: the ") + to_string(side) +
+                                      " wheel is nowhere above its rail (lateral shift too large?)");
+  return *std::min_element(minima.begin(), minima.end(),
+                           [](const GapSample& a, const GapSample& b) { return a.gap < b.gap; });
+}
+
+/// The interpenetration regions of `side` at `pose`, merged as CONTACT does: neighbours
+/// whose rail points lie closer than `separation_distance` and whose inclinations differ by
+/// less than `separation_angle` form one patch. The centre and inclination are the
+/// interpenetration-weighted means with CONTACT's weight per slice, ∫(−g(x))² dx over the
+/// overlap of the slice, g(x) = g − x²/(2ρ), i.e. (16/15)·pen²·√(2ρ·pen) (docs/wheel-rail.md §3).
+inline std::vector<ContactRegion> contact_regions(const Track& track, const Wheelset& wheelset, Side side,
+                                                  const WheelsetPose& pose, const SearchOptions& options = {}) {
+  const auto samples = sample_gap(track, wheelset, side, pose, options);
+  std::vector<ContactRegion> regions;
+  for (std::size_t k = 0; k < samples.size(); ++k) {
+    if (!(samples[k].gap < 0)) continue;
+    if (k == 0 || !(samples[k - 1].gap < 0)) {
+      ContactRegion region;
+      region.side = side;
+      region.deepest = samples[k];
+      regions.push_back(region);
+    }
+    auto& region = regions.back();
+    region.slices.push_back(samples[k]);
+    if (samples[k].gap < region.deepest.gap) region.deepest = samples[k];
+  }
+  for (auto& region : regions) {
+    Eigen::Vector3d weighted = Eigen::Vector3d::Zero();
+    double inclination = 0, total = 0;
+    for (const auto& slice : region.slices) {
+      const double penetration = -slice.gap;
+      const double weight = penetration * penetration * std::sqrt(2 * slice.wheel.radius * penetration);
+      weighted += weight * Eigen::Vector3d(slice.wheel.point.x(), slice.wheel.point.y(), slice.rail_z);
+      inclination += weight * std::atan(slice.rail_slope);
+      total += weight;
+    }
+    region.weight = total;
+    region.centre = weighted / total;
+    region.inclination = inclination / total;
+  }
+  // Merge neighbours (ordered by y_w, so by rail position).
+  std::vector<ContactRegion> merged;
+  for (auto& region : regions) {
+    if (!merged.empty()) {
+      auto& last = merged.back();
+      const auto& a = last.slices.back();
+      const auto& b = region.slices.front();
+      const double distance = std::hypot(a.wheel.point.y() - b.wheel.point.y(), a.rail_z - b.rail_z);
+      if (distance <= options.separation_distance &&
+          std::abs(last.inclination - region.inclination) <= options.separation_angle) {
+        const double total = last.weight + region.weight;
+        last.centre = (last.weight * last.centre + region.weight * region.centre) / total;
+        last.inclination = (last.weight * last.inclination + region.weight * region.inclination) / total;
+        last.weight = total;
+        if (region.deepest.gap < last.deepest.gap) last.deepest = region.deepest;
+        last.slices.insert(last.slices.end(), region.slices.begin(), region.slices.end());
+        continue;
+      }
+    }
+    merged.push_back(std::move(region));
+  }
+  return merged;
+}
+
+/// The rigid pose with both wheels just touching their rails (no interpenetration) at
+/// lateral shift y and yaw: the roll that equalises the two smallest gaps, then the drop.
+inline WheelsetPose rigid_contact_pose(const Track& track, const Wheelset& wheelset, double y, double yaw,
+                                       const SearchOptions& options = {}) {
+  FASTNORM_CHECK(std::isfinite(y), fastnorm::detail::describe("rigid_contact_pose: y must be finite (m)", y));
+  FASTNORM_CHECK(std::isfinite(yaw) && std::abs(yaw) < 0.2,
+                 fastnorm::detail::describe("rigid_contact_pose: yaw must lie in (-0.2, 0.2) rad", yaw));
+  WheelsetPose pose{y, 0, 0, yaw};
+  auto imbalance = [&](double roll) {
+    pose.roll = roll;
+    return smallest_gap(track, wheelset, Side::right, pose, options).gap -
+           smallest_gap(track, wheelset, Side::left, pose, options).gap;
+  };
+  // Roll > 0 lowers the right wheel: the imbalance falls with roll. Illinois regula falsi.
+  double low = -0.02, high = 0.02, f_low = imbalance(low), f_high = imbalance(high);
+  FASTNORM_CHECK(f_low > 0 && f_high < 0,
+                 fastnorm::detail::describe("rigid_contact_pose: no roll within ±0.02 rad puts both wheels on "
+                                            "their rails at this lateral shift (m)", y));
+  int side_kept = 0;
+  for (int step = 0; step < 200 && high - low > 1e-13; ++step) {
+    const double roll = (low * f_high - high * f_low) / (f_high - f_low);
+    const double f = imbalance(roll);
+    if (f == 0) {
+      low = high = roll;
+      break;
+    }
+    if (f > 0) {
+      low = roll, f_low = f;
+      if (side_kept == -1) f_high /= 2;
+      side_kept = -1;
+    } else {
+      high = roll, f_high = f;
+      if (side_kept == 1) f_low /= 2;
+      side_kept = 1;
+    }
+  }
+  pose.roll = (low + high) / 2;
+  pose.z = smallest_gap(track, wheelset, Side::right, pose, options).gap;
+  return pose;
+}
+
+}  // namespace fastnorm::wheelrail

@@ -1,0 +1,161 @@
+#pragma once
+/// @file patch.hpp
+/// A contact patch: its reference point and tangent plane, the grid of the potential contact
+/// area, and the exact undeformed distance h(x, s) on it (docs/wheel-rail.md §4, from
+/// ../shared/docs/wheelset-geometry.md §4).
+
+#include <Eigen/Core>
+#include <algorithm>
+#include <cmath>
+#include <optional>
+
+#include "fastnorm/error.hpp"
+#include "fastnorm/grid.hpp"
+#include "fastnorm/wheelrail/contact_search.hpp"
+
+namespace fastnorm::wheelrail {
+
+/// Element sizes of the patch grids (m). Zero sizes are chosen so that the largest
+/// interpenetration region is covered by about `elements` × `elements`.
+struct PatchGridOptions {
+  Eigen::Index elements = 60;  ///< elements across the largest region, each direction
+  double element_length = 0;   ///< dx, rolling direction (0: from `elements`)
+  double element_width = 0;    ///< ds, lateral in the tangent plane (0: from `elements`)
+};
+
+/// Where and how a patch lies: reference point on the rail, inclination, grid.
+struct PatchFrame {
+  Side side = Side::right;
+  Eigen::Vector3d reference = Eigen::Vector3d::Zero();  ///< P_ref on the rail (track frame, m)
+  double inclination = 0;  ///< δ: rail inclination dZ/dy at P_ref as an angle (rad)
+
+  /// Lateral axis t_s = (0, cos δ, sin δ): the grid's y, towards +y_track on both sides.
+  Eigen::Vector3d lateral_axis() const { return {0, std::cos(inclination), std::sin(inclination)}; }
+  /// Normal n = e_x × t_s = (0, −sin δ, cos δ), into the rail.
+  Eigen::Vector3d normal() const { return {0, -std::sin(inclination), std::cos(inclination)}; }
+  /// Contact angle of the normal from the vertical, positive leaning to the track centre.
+  double contact_angle() const { return -side_sign(side) * inclination; }
+};
+
+/// A patch ready for a solver: frame, grid (x rolling, y = s lateral, relative to P_ref)
+/// and the undeformed distance h on it (m, negative = interpenetration; approach 0).
+struct ContactPatch {
+  PatchFrame frame;
+  Grid<double> grid;
+  Eigen::VectorXd undeformed_distance;
+};
+
+/// Gap value where a grid point has no wheel or rail surface along its normal (m).
+inline constexpr double no_surface_gap = 1.0;
+
+/// The exact undeformed distance h = n_rail − n_wheel at every element centre of `grid`
+/// (wheelset-geometry.md §4 step 3): the rail along the normal line through
+/// q = P_ref + x e_x + s t_s by a 2-D intersection, the wheel by solving
+/// √(x_w² + z_w²) = ρ(y_w) in wheelset coordinates.
+inline Eigen::VectorXd undeformed_distance(const Track& track, const Wheelset& wheelset, const WheelsetPose& pose,
+                                           const PatchFrame& frame, const Grid<double>& grid) {
+  const Eigen::Vector3d lateral = frame.lateral_axis(), normal = frame.normal();
+  const Eigen::Matrix3d rotation = Wheelset::rotation(pose);
+  const Eigen::Vector3d centre = wheelset.centre(pose);
+  const Eigen::Vector3d normal_in_wheelset = rotation.transpose() * normal;
+  Eigen::VectorXd h(grid.size());
+  for (Eigen::Index j = 0; j < grid.my(); ++j) {
+    const Eigen::Vector3d row_point = frame.reference + grid.y(j) * lateral;
+    const auto rail = track.distance_to_rail(frame.side, row_point.y(), row_point.z(), normal.y(), normal.z());
+    double guess = rail ? *rail : 0;
+    for (Eigen::Index i = 0; i < grid.mx(); ++i) {
+      const Eigen::Vector3d from_centre = rotation.transpose() * (row_point + grid.x(i) * Eigen::Vector3d::UnitX() - centre);
+      // G(t) = √(x_w² + z_w²) − ρ(y_w(t)): negative inside the wheel, rising along n.
+      bool off_profile = false;
+      auto radial_excess = [&](double t) {
+        const Eigen::Vector3d p = from_centre + t * normal_in_wheelset;
+        const double distance = std::hypot(p.x(), p.z());
+        const auto profile_y = wheelset.profile_coordinate(frame.side, p.y());
+        if (!profile_y) {
+          off_profile = true;
+          return ProfileValue<double>{0, 1};
+        }
+        const auto rho = wheelset.radius(frame.side, *profile_y);
+        return ProfileValue<double>{
+            distance - rho.value,
+            (p.x() * normal_in_wheelset.x() + p.z() * normal_in_wheelset.z()) / distance - rho.slope * normal_in_wheelset.y()};
+      };
+      const double low = -0.020, high = 0.005;  // bracket of t (m), wheelset-geometry.md §4
+      const double at_low = radial_excess(low).value, at_high = radial_excess(high).value;
+      if (!rail || off_profile || (at_low < 0) == (at_high < 0)) {
+        h(grid.index(i, j)) = no_surface_gap;
+        continue;
+      }
+      const double wheel = detail::bracketed_root(radial_excess, low, high, guess, 1e-13);
+      if (off_profile) {
+        h(grid.index(i, j)) = no_surface_gap;
+        continue;
+      }
+      guess = wheel;
+      h(grid.index(i, j)) = *rail - wheel;
+    }
+  }
+  return h;
+}
+
+/// The frame of a region: its weighted centre projected to the rail, weighted inclination.
+inline PatchFrame patch_frame(const Track& track, const ContactRegion& region) {
+  PatchFrame frame{region.side, region.centre, region.inclination};
+  if (const auto rail = track.rail_height(region.side, region.centre.y())) frame.reference.z() = rail->value;
+  return frame;
+}
+
+/// Extent of a region in its frame (m): rolling [x_lo, x_hi] from the overlap half-length
+/// √(2ρ·pen) of every slice, lateral [s_lo, s_hi] from its rail points.
+struct PatchExtent {
+  double x_low = 0, x_high = 0, s_low = 0, s_high = 0;
+};
+
+inline PatchExtent patch_extent(const PatchFrame& frame, const ContactRegion& region) {
+  PatchExtent extent{1e300, -1e300, 1e300, -1e300};
+  const Eigen::Vector3d lateral = frame.lateral_axis();
+  for (const auto& slice : region.slices) {
+    const double half_length = std::sqrt(2 * slice.wheel.radius * -slice.gap);
+    const double x = slice.wheel.point.x() - frame.reference.x();
+    extent.x_low = std::min(extent.x_low, x - half_length);
+    extent.x_high = std::max(extent.x_high, x + half_length);
+    const Eigen::Vector3d rail_point(slice.wheel.point.x(), slice.wheel.point.y(), slice.rail_z);
+    const double s = (rail_point - frame.reference).dot(lateral);
+    extent.s_low = std::min(extent.s_low, s);
+    extent.s_high = std::max(extent.s_high, s);
+  }
+  return extent;
+}
+
+/// The grid over an extent: element centres at whole multiples of (dx, ds) from P_ref, as
+/// in CONTACT, with one guard element beyond the extent on every side.
+inline Grid<double> patch_grid(const PatchExtent& extent, double dx, double ds) {
+  FASTNORM_CHECK(std::isfinite(dx) && dx > 0, fastnorm::detail::describe("patch grid: dx must be positive (m)", dx));
+  FASTNORM_CHECK(std::isfinite(ds) && ds > 0, fastnorm::detail::describe("patch grid: ds must be positive (m)", ds));
+  const auto first_i = static_cast<Eigen::Index>(std::floor(extent.x_low / dx)) - 1;
+  const auto last_i = static_cast<Eigen::Index>(std::ceil(extent.x_high / dx)) + 1;
+  const auto first_j = static_cast<Eigen::Index>(std::floor(extent.s_low / ds)) - 1;
+  const auto last_j = static_cast<Eigen::Index>(std::ceil(extent.s_high / ds)) + 1;
+  return Grid<double>(last_i - first_i + 1, last_j - first_j + 1, dx, ds, static_cast<double>(first_i) * dx,
+                      static_cast<double>(first_j) * ds);
+}
+
+/// Element sizes for a set of regions: the user's, or the largest extent over `elements`.
+inline std::pair<double, double> element_sizes(const std::vector<PatchExtent>& extents, const PatchGridOptions& options) {
+  FASTNORM_CHECK(options.elements >= 4,
+                 fastnorm::detail::describe("PatchGridOptions: elements must be >= 4", options.elements));
+  FASTNORM_CHECK(std::isfinite(options.element_length) && options.element_length >= 0,
+                 fastnorm::detail::describe("PatchGridOptions: element_length must be >= 0 (m)", options.element_length));
+  FASTNORM_CHECK(std::isfinite(options.element_width) && options.element_width >= 0,
+                 fastnorm::detail::describe("PatchGridOptions: element_width must be >= 0 (m)", options.element_width));
+  double length = 0, width = 0;
+  for (const auto& extent : extents) {
+    length = std::max(length, extent.x_high - extent.x_low);
+    width = std::max(width, extent.s_high - extent.s_low);
+  }
+  const auto count = static_cast<double>(options.elements);
+  return {options.element_length > 0 ? options.element_length : length / count,
+          options.element_width > 0 ? options.element_width : std::max(width, 1e-6) / count};
+}
+
+}  // namespace fastnorm::wheelrail

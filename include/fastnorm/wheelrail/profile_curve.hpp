@@ -1,0 +1,100 @@
+#pragma once
+/// @file profile_curve.hpp
+/// A profile as the wheel–rail geometry uses it: value and slope on a valid interval,
+/// whatever its source (closed form or a spline through measured points), plus the two
+/// 1-D solvers the geometry needs.
+
+#include <cmath>
+#include <functional>
+#include <utility>
+
+#include "fastnorm/error.hpp"
+#include "fastnorm/wheelrail/profile_file.hpp"
+#include "fastnorm/wheelrail/profile_value.hpp"
+#include "fastnorm/wheelrail/s1002.hpp"
+#include "fastnorm/wheelrail/uic60.hpp"
+
+namespace fastnorm::wheelrail {
+
+/// A profile function y ↦ {value, slope} (m) valid on [y_min, y_max] (m).
+/// Wheels: value = radius increase F above the nominal radius, y = profile coordinate from
+/// the taping line, positive to the field side (as S1002). Rails: value = depth z_r below
+/// the top (positive down), y = y_r from the rail's axis, positive to the field side of the
+/// right rail, uncanted unless the track is given a cant of zero.
+struct ProfileCurve {
+  std::function<ProfileValue<double>(double)> evaluate;
+  double y_min = 0;
+  double y_max = 0;
+
+  bool contains(double y) const { return y >= y_min && y <= y_max; }
+};
+
+/// The closed-form S1002 wheel.
+inline ProfileCurve s1002_wheel() {
+  return {[](double y) { return S1002<double>().evaluate(y); }, S1002<double>::y_min, S1002<double>::y_max};
+}
+
+/// The closed-form UIC60 head up to the end of its R13 arcs (MBench variant by default).
+inline ProfileCurve uic60_rail(const Uic60<double>& rail = Uic60<double>::mbench()) {
+  return {[rail](double y) { return rail.evaluate(y); }, -rail.flank_start(), rail.flank_start()};
+}
+
+/// A measured or worn profile: the spline through its points.
+inline ProfileCurve spline_curve(SplineProfile spline) {
+  const double low = spline.y_min(), high = spline.y_max();
+  return {[spline = std::move(spline)](double y) { return spline.evaluate(y); }, low, high};
+}
+
+namespace detail {
+
+/// Root of f on [low, high] where f(low), f(high) differ in sign: Newton steps from
+/// `guess`, kept inside the shrinking bracket (bisection when a step leaves it).
+/// `f` returns {value, derivative}. Hand-written: a scalar 1-D root is not Eigen's business.
+template <typename Function>
+double bracketed_root(Function f, double low, double high, double guess, double tolerance) {
+  auto at_low = f(low).value;
+  if (at_low == 0) return low;
+  double x = (guess > low && guess < high) ? guess : (low + high) / 2;
+  for (int step = 0; step < 200 && high - low > tolerance; ++step) {
+    const auto here = f(x);
+    if (here.value == 0) return x;
+    if ((here.value < 0) == (at_low < 0)) {
+      low = x;
+      at_low = here.value;
+    } else {
+      high = x;
+    }
+    const double newton = here.slope != 0 ? x - here.value / here.slope : low - 1;
+    const double next = (newton > low && newton < high) ? newton : (low + high) / 2;
+    if (std::abs(next - x) <= tolerance / 4) return next;
+    x = next;
+  }
+  return x;
+}
+
+/// Minimum of a unimodal f on [low, high] by golden-section search (to `tolerance` in x).
+template <typename Function>
+std::pair<double, double> golden_minimum(Function f, double low, double high, double tolerance) {
+  const double ratio = (std::sqrt(5.0) - 1) / 2;
+  double a = high - ratio * (high - low), b = low + ratio * (high - low);
+  double fa = f(a), fb = f(b);
+  while (high - low > tolerance) {
+    if (fa <= fb) {
+      high = b;
+      b = a;
+      fb = fa;
+      a = high - ratio * (high - low);
+      fa = f(a);
+    } else {
+      low = a;
+      a = b;
+      fa = fb;
+      b = low + ratio * (high - low);
+      fb = f(b);
+    }
+  }
+  return fa <= fb ? std::pair{a, fa} : std::pair{b, fb};
+}
+
+}  // namespace detail
+}  // namespace fastnorm::wheelrail

@@ -1,0 +1,137 @@
+#pragma once
+/// @file track.hpp
+/// Two rails placed in the track: canted, lifted to the track plane and set to the gauge
+/// (docs/wheel-rail.md §2, from ../shared/docs/profiles.md §3).
+
+#include <cmath>
+#include <optional>
+
+#include "fastnorm/error.hpp"
+#include "fastnorm/wheelrail/profile_curve.hpp"
+
+namespace fastnorm::wheelrail {
+
+/// Which wheel and rail: left (y_track < 0) or right (y_track > 0).
+enum class Side { left, right };
+
+/// +1 for the right side, −1 for the left.
+inline double side_sign(Side side) { return side == Side::right ? 1.0 : -1.0; }
+
+inline const char* to_string(Side side) { return side == Side::right ? "right" : "left"; }
+
+/// How the rails sit in the track (m, rad).
+struct TrackLayout {
+  double gauge = 1.435;                 ///< between the gauge points of the two rails
+  double gauge_depth = 0.014;           ///< depth of the gauge points below the top of rail
+  double cant = std::atan(1.0 / 40);    ///< rail inclination towards the track centre (0: profile already canted)
+};
+
+/// The track: both rail surfaces in the track frame (x forward, y right, z down, origin on
+/// the centre line in the plane through the rail tops). The right rail surface is
+/// z = Z(y); the left is its mirror image, Z_left(y) = Z(−y).
+class Track {
+ public:
+  /// @param rail the uncanted rail head (depth below the top, y_r positive to the field side
+  ///        of the right rail); the default is the MBench UIC60
+  /// @throws fastnorm::invalid_argument for a gauge, gauge depth or cant out of range
+  explicit Track(ProfileCurve rail = uic60_rail(), TrackLayout layout = {})
+      : rail_(std::move(rail)), layout_(layout) {
+    FASTNORM_CHECK(std::isfinite(layout.gauge) && layout.gauge > 0,
+                   fastnorm::detail::describe("Track: gauge must be positive (m)", layout.gauge));
+    FASTNORM_CHECK(std::isfinite(layout.gauge_depth) && layout.gauge_depth > 0,
+                   fastnorm::detail::describe("Track: gauge_depth must be positive (m)", layout.gauge_depth));
+    FASTNORM_CHECK(std::isfinite(layout.cant) && std::abs(layout.cant) < 0.2,
+                   fastnorm::detail::describe("Track: cant must lie in (-0.2, 0.2) rad", layout.cant));
+    FASTNORM_CHECK(static_cast<bool>(rail_.evaluate) && rail_.y_min < rail_.y_max,
+                   "Track: the rail profile needs a function and y_min < y_max");
+    cos_ = std::cos(layout.cant);
+    sin_ = std::sin(layout.cant);
+    // Top of the canted head: the lowest z' (dense scan, then golden section).
+    const int samples = 2000;
+    double best = rail_.y_min, best_z = canted_z(best);
+    for (int k = 1; k <= samples; ++k) {
+      const double y_r = rail_.y_min + (rail_.y_max - rail_.y_min) * k / samples;
+      if (canted_z(y_r) < best_z) best = y_r, best_z = canted_z(y_r);
+    }
+    const double step = (rail_.y_max - rail_.y_min) / samples;
+    const auto top = detail::golden_minimum([&](double y_r) { return canted_z(y_r); },
+                                            std::max(rail_.y_min, best - step), std::min(rail_.y_max, best + step), 1e-12);
+    shift_z_ = -top.second;
+    // Gauge point: the innermost point within gauge_depth of the top.
+    double inside = top.first, outside = rail_.y_min;
+    FASTNORM_CHECK(canted_z(outside) + shift_z_ > layout.gauge_depth,
+                   "Track: the rail profile does not reach gauge_depth below its top on the gauge side");
+    for (int k = 0; k < 200 && inside - outside > 1e-13; ++k) {
+      const double middle = (inside + outside) / 2;
+      (canted_z(middle) + shift_z_ <= layout.gauge_depth ? inside : outside) = middle;
+    }
+    shift_y_ = layout.gauge / 2 - canted_y(inside);
+  }
+
+  const TrackLayout& layout() const { return layout_; }
+
+  /// Height Z (m, down) of the rail on `side` at lateral track position y (m), and dZ/dy;
+  /// empty where y is beyond the rail profile.
+  std::optional<ProfileValue<double>> rail_height(Side side, double y) const {
+    const double sign = side_sign(side);
+    const auto y_r = right_profile_coordinate(sign * y);
+    if (!y_r) return std::nullopt;
+    const auto surface = right_rail(*y_r);
+    return ProfileValue<double>{surface.z, sign * surface.slope};
+  }
+
+  /// Distance t (m) along the unit direction (dir_y, dir_z) from (y, z) to the rail surface on
+  /// `side` (a 2-D intersection: the rail is prismatic); empty if the line misses the profile.
+  std::optional<double> distance_to_rail(Side side, double y, double z, double dir_y, double dir_z) const {
+    const double sign = side_sign(side);
+    y *= sign;
+    dir_y *= sign;
+    // cross((P(y_r) − Q), d) = 0: zero where the rail point lies on the line.
+    auto crossing = [&](double y_r) {
+      const auto p = right_rail(y_r);
+      const double dy_dyr = cos_ + sin_ * p.depth_slope, dz_dyr = -sin_ + cos_ * p.depth_slope;
+      return ProfileValue<double>{(p.y - y) * dir_z - (p.z - z) * dir_y, dy_dyr * dir_z - dz_dyr * dir_y};
+    };
+    const double low = rail_.y_min, high = rail_.y_max;
+    if ((crossing(low).value < 0) == (crossing(high).value < 0)) return std::nullopt;
+    const auto guess = right_profile_coordinate(y);
+    const double y_r = detail::bracketed_root(crossing, low, high, guess ? *guess : (low + high) / 2, 1e-13);
+    const auto p = right_rail(y_r);
+    return (p.y - y) * dir_y + (p.z - z) * dir_z;
+  }
+
+ private:
+  struct RailPoint {
+    double y, z;           // track coordinates of the right rail point (m)
+    double slope;          // dZ/dy in the track
+    double depth_slope;    // dz_r/dy_r of the uncanted profile
+  };
+
+  double canted_y(double y_r) const { return cos_ * y_r + sin_ * rail_.evaluate(y_r).value; }
+  double canted_z(double y_r) const { return -sin_ * y_r + cos_ * rail_.evaluate(y_r).value; }
+
+  // Right rail: y' = cosθ·y_r + sinθ·z_r, z' = −sinθ·y_r + cosθ·z_r (profiles.md §3), shifted.
+  RailPoint right_rail(double y_r) const {
+    const auto at = rail_.evaluate(y_r);
+    const double dy = cos_ + sin_ * at.slope, dz = -sin_ + cos_ * at.slope;
+    return {cos_ * y_r + sin_ * at.value + shift_y_, -sin_ * y_r + cos_ * at.value + shift_z_, dz / dy, at.slope};
+  }
+
+  // y_r of the right rail point at track position y: y(y_r) increases monotonically
+  // (dy/dy_r = cosθ + sinθ·z_r' > 0 on any head with slopes above −cotθ).
+  std::optional<double> right_profile_coordinate(double y) const {
+    auto offset = [&](double y_r) {
+      const auto at = rail_.evaluate(y_r);
+      return ProfileValue<double>{cos_ * y_r + sin_ * at.value + shift_y_ - y, cos_ + sin_ * at.slope};
+    };
+    if (offset(rail_.y_min).value > 0 || offset(rail_.y_max).value < 0) return std::nullopt;
+    return detail::bracketed_root(offset, rail_.y_min, rail_.y_max, (y - shift_y_) / cos_, 1e-13);
+  }
+
+  ProfileCurve rail_;
+  TrackLayout layout_;
+  double cos_ = 1, sin_ = 0;
+  double shift_y_ = 0, shift_z_ = 0;
+};
+
+}  // namespace fastnorm::wheelrail

@@ -1,0 +1,109 @@
+#pragma once
+/// @file wheelset.hpp
+/// A wheelset of two profiled wheels and its pose on the track (docs/wheel-rail.md §2,
+/// from ../shared/docs/wheelset-geometry.md §2–3).
+
+#include <Eigen/Core>
+#include <algorithm>
+#include <cmath>
+#include <optional>
+
+#include "fastnorm/error.hpp"
+#include "fastnorm/wheelrail/profile_curve.hpp"
+#include "fastnorm/wheelrail/track.hpp"
+
+namespace fastnorm::wheelrail {
+
+/// Where the wheelset is (m, rad), in the track frame (x forward, y right, z down).
+/// z = 0 puts the taping-line points in the track plane at zero roll; roll > 0 lowers the
+/// right wheel; yaw > 0 turns the nose to the right.
+struct WheelsetPose {
+  double y = 0;     ///< lateral shift
+  double z = 0;     ///< vertical position (down)
+  double roll = 0;  ///< rotation about x_track
+  double yaw = 0;   ///< rotation about the rolled z axis
+};
+
+/// Dimensions of the wheelset (m).
+struct WheelsetLayout {
+  double nominal_radius = 0.45;            ///< rolling radius at the taping line
+  double taping_line_half_distance = 0.75; ///< wheelset centre to each taping-line plane
+};
+
+/// Two identical wheels, bodies of revolution about the axle, the right one at
+/// y_ws = +(d + y_w), the left at y_ws = −(d + y_w), radius r0 + F(y_w).
+class Wheelset {
+ public:
+  using Vector3 = Eigen::Vector3d;
+  using Matrix3 = Eigen::Matrix3d;
+
+  /// A point of the contact locus: where a wheel's surface normal has no x_track component.
+  struct LocusPoint {
+    double profile_y = 0;    ///< y_w, the wheel profile coordinate (m)
+    double radius = 0;       ///< ρ(y_w) (m)
+    double radius_slope = 0; ///< dρ/dy_ws
+    double angle = 0;        ///< θ, the wheel angle of the point (0 = lowest)
+    Vector3 point;           ///< in the track frame (m)
+  };
+
+  /// @throws fastnorm::invalid_argument for non-positive dimensions
+  explicit Wheelset(ProfileCurve wheel = s1002_wheel(), WheelsetLayout layout = {})
+      : wheel_(std::move(wheel)), layout_(layout) {
+    FASTNORM_CHECK(std::isfinite(layout.nominal_radius) && layout.nominal_radius > 0,
+                   fastnorm::detail::describe("Wheelset: nominal_radius must be positive (m)", layout.nominal_radius));
+    FASTNORM_CHECK(std::isfinite(layout.taping_line_half_distance) && layout.taping_line_half_distance > 0,
+                   fastnorm::detail::describe("Wheelset: taping_line_half_distance must be positive (m)",
+                                              layout.taping_line_half_distance));
+    FASTNORM_CHECK(static_cast<bool>(wheel_.evaluate) && wheel_.y_min < wheel_.y_max,
+                   "Wheelset: the wheel profile needs a function and y_min < y_max");
+  }
+
+  const WheelsetLayout& layout() const { return layout_; }
+  const ProfileCurve& profile() const { return wheel_; }
+
+  /// The wheelset centre C = (0, y, z − r0) in the track frame.
+  Vector3 centre(const WheelsetPose& pose) const { return {0, pose.y, pose.z - layout_.nominal_radius}; }
+
+  /// R = Rx(roll)·Rz(yaw): p_track = C + R·p_wheelset.
+  static Matrix3 rotation(const WheelsetPose& pose) {
+    const double cr = std::cos(pose.roll), sr = std::sin(pose.roll);
+    const double cy = std::cos(pose.yaw), sy = std::sin(pose.yaw);
+    Matrix3 roll, yaw;
+    roll << 1, 0, 0, 0, cr, -sr, 0, sr, cr;
+    yaw << cy, -sy, 0, sy, cy, 0, 0, 0, 1;
+    return roll * yaw;
+  }
+
+  /// y_ws of profile coordinate y_w on `side`.
+  double axle_coordinate(Side side, double profile_y) const {
+    return side_sign(side) * (layout_.taping_line_half_distance + profile_y);
+  }
+
+  /// y_w of axle coordinate y_ws on `side`; empty beyond the wheel profile.
+  std::optional<double> profile_coordinate(Side side, double axle_y) const {
+    const double profile_y = side_sign(side) * axle_y - layout_.taping_line_half_distance;
+    if (!wheel_.contains(profile_y)) return std::nullopt;
+    return profile_y;
+  }
+
+  /// ρ(y_w) and dρ/dy_ws (the sign of the slope flips on the left wheel).
+  ProfileValue<double> radius(Side side, double profile_y) const {
+    const auto at = wheel_.evaluate(profile_y);
+    return {layout_.nominal_radius + at.value, side_sign(side) * at.slope};
+  }
+
+  /// The locus point at y_w: sin θ = −ρ'·tan ψ (wheelset-geometry.md §3), then C + R·p_ws.
+  LocusPoint locus(Side side, double profile_y, const WheelsetPose& pose, const Matrix3& rotation) const {
+    const auto rho = radius(side, profile_y);
+    const double sine = std::clamp(-rho.slope * std::tan(pose.yaw), -1.0, 1.0);
+    const double angle = std::asin(sine);
+    const Vector3 on_wheel(rho.value * sine, axle_coordinate(side, profile_y), rho.value * std::cos(angle));
+    return {profile_y, rho.value, rho.slope, angle, centre(pose) + rotation * on_wheel};
+  }
+
+ private:
+  ProfileCurve wheel_;
+  WheelsetLayout layout_;
+};
+
+}  // namespace fastnorm::wheelrail

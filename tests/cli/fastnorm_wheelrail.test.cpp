@@ -1,0 +1,87 @@
+// fastnorm-wheelrail as a user runs it: one line per patch with the specified fields,
+// the single-wheel mode against CONTACT, --compare, --write-case, --svg, exit statuses.
+#include <unistd.h>
+
+#include <catch2/catch.hpp>
+#include <filesystem>
+#include <fstream>
+#include <fastnorm/fastnorm.hpp>
+#include <sstream>
+#include <string>
+#include <utility>
+
+#include "support/run_command.hpp"
+
+using Catch::Matchers::Contains;
+namespace fs = std::filesystem;
+using fastnorm::test::field;
+
+namespace {
+
+fastnorm::test::Outcome run_wheelrail(const std::string& arguments) {
+  return fastnorm::test::run_command(FASTNORM_WHEELRAIL_EXE, arguments);
+}
+
+}  // namespace
+
+TEST_CASE("fastnorm-wheelrail prints one line per patch", "[cli][wheelrail]") {
+  const auto run = run_wheelrail("--y 3 --elements 30 --solver elliptic --compare");
+  REQUIRE(run.status == 0);
+  std::istringstream lines(run.output);
+  std::string line;
+  std::getline(lines, line);
+  CHECK_THAT(line, Contains("# status=converged"));
+  int patches = 0;
+  double vertical = 0;
+  while (std::getline(lines, line)) {
+    ++patches;
+    CHECK((line.rfind("wheel=left patch=1 ", 0) == 0 || line.rfind("wheel=right patch=1 ", 0) == 0));
+    for (const char* name : {"ncontact", "pmax", "x_track", "y_track"}) CHECK(std::isfinite(field(line, name)));
+    const double fn = field(line, "fn"), angle = field(line, "contact_angle");
+    CHECK(field(line, "approach") > 0);
+    CHECK(std::abs(field(line, "rel_fn_err_vs_norm")) < 1e-3);
+    // Both contact angles lean to the track centre at y = 3 mm.
+    CHECK(angle > 0);
+    vertical += fn * std::cos(angle);
+  }
+  CHECK(patches == 2);
+  CHECK(vertical == Approx(2e5).epsilon(1e-5));  // printed to 6 digits
+}
+
+TEST_CASE("fastnorm-wheelrail single-wheel mode writes cases and drawings", "[cli][wheelrail]") {
+  const fs::path dir = fs::temp_directory_path() / ("fastnorm_wheelrail_" + std::to_string(getpid()));
+  fs::create_directories(dir);
+  const auto run = run_wheelrail("--fz 1e5 --wheel right --y 0 --elements 30 --write-case " + (dir / "p").string() +
+                                 " --svg " + (dir / "p").string());
+  REQUIRE(run.status == 0);
+  // CONTACT, wr_y0.0_psi0.0_right: Fn = 100061.7 N, YCP = 750.3853 mm, DELTCP = −0.0351.
+  CHECK(field(run.output, "fn") == Approx(100061.7).epsilon(5e-5));
+  CHECK(field(run.output, "y_track") == Approx(750.3853).margin(0.01));
+  CHECK(field(run.output, "contact_angle") == Approx(0.0351).margin(2e-4));
+  const auto problem = fastnorm::read_case_file<double>((dir / "p_right_1.case").string());
+  REQUIRE(problem.result);
+  CHECK(problem.result->normal_force == Approx(field(run.output, "fn")).epsilon(1e-5));
+  // The written case solves to the printed force.
+  const auto again = fastnorm::NormSolver<double>(problem.grid, problem.material)
+                         .solve(problem.undeformed_distance, fastnorm::Loading<double>::approach());
+  CHECK(again.normal_force == Approx(problem.result->normal_force).epsilon(1e-9));
+  std::ifstream svg(dir / "p_right_1.svg");
+  std::string first;
+  std::getline(svg, first);
+  CHECK_THAT(first, Contains("<svg"));
+  fs::remove_all(dir);
+}
+
+TEST_CASE("fastnorm-wheelrail refuses bad input with status 2", "[cli][wheelrail]") {
+  const std::pair<const char*, const char*> cases[] = {{"--load 2e5 --fz 1e5 --wheel left", "exclude"},
+                                                       {"--fz 1e5", "--wheel"},
+                                                       {"--y three", "--y needs a number"},
+                                                       {"--solver magic", "unknown solver"},
+                                                       {"--load -5", "load"}};
+  for (const auto& [arguments, message] : cases) {
+    INFO(arguments);
+    const auto run = run_wheelrail(arguments);
+    CHECK(run.status == 2);
+    CHECK_THAT(run.output, Contains(message));
+  }
+}

@@ -1,0 +1,158 @@
+// Static equilibrium: residuals, symmetry, yaw, errors, and CONTACT's single-wheel mode
+// against the wr_* peer cases (normal force, lateral contact position, contact angle).
+#include <catch2/catch.hpp>
+#include <fastnorm/fastnorm.hpp>
+
+#include <filesystem>
+
+#include "support/wheelrail_cases.hpp"
+
+namespace wr = fastnorm::wheelrail;
+using Catch::Matchers::Contains;
+
+namespace {
+
+wr::EquilibriumOptions coarse() {
+  wr::EquilibriumOptions options;
+  options.grid.elements = 30;
+  return options;
+}
+
+}  // namespace
+
+TEST_CASE("The wheelset carries its load with no roll moment", "[wheelrail][equilibrium]") {
+  const wr::Track track;
+  const wr::Wheelset wheelset;
+  const double load = 2e5;
+  for (double y : {0.0, 3e-3, 6e-3}) {
+    INFO("y = " << y * 1e3 << " mm");
+    const auto result = wr::solve_equilibrium(track, wheelset, y, 0, load, coarse());
+    REQUIRE(result.ok());
+    double vertical = 0, moment = 0;
+    for (const auto& [patch, solution] : result.patches) {
+      REQUIRE(solution.ok());
+      const Eigen::Vector3d arm = patch.frame.reference - wheelset.centre(result.pose);
+      const double c = std::cos(patch.frame.inclination), s = std::sin(patch.frame.inclination);
+      vertical += solution.normal_force * c;
+      moment -= solution.normal_force * (arm.y() * c + arm.z() * s);
+      // approach 0 on the reported h: the solution is the one of h as it stands
+      CHECK(solution.approach == 0);
+    }
+    // Recomputed from the patches, not taken from the result.
+    CHECK(std::abs(vertical - load) <= 1e-6 * load);
+    CHECK(std::abs(moment) <= 1e-6 * load * 0.75);
+    CHECK(result.vertical_force == Approx(vertical).epsilon(1e-12));
+    // Both wheels carry load.
+    double left = 0, right = 0;
+    for (const auto& [patch, solution] : result.patches) {
+      (patch.frame.side == wr::Side::left ? left : right) += solution.normal_force;
+    }
+    CHECK(left > 0.3 * load);
+    CHECK(right > 0.3 * load);
+  }
+}
+
+TEST_CASE("At y = 0, yaw 0 the equilibrium is mirror-symmetric", "[wheelrail][equilibrium]") {
+  const wr::Track track;
+  const wr::Wheelset wheelset;
+  const auto result = wr::solve_equilibrium(track, wheelset, 0, 0, 2e5, coarse());
+  REQUIRE(result.ok());
+  REQUIRE(result.patches.size() == 2);
+  const auto& a = result.patches[0];
+  const auto& b = result.patches[1];
+  CHECK(a.patch.frame.side != b.patch.frame.side);
+  CHECK(std::abs(result.pose.roll) < 1e-9);
+  CHECK(a.solution.normal_force == Approx(b.solution.normal_force).epsilon(1e-9));
+  CHECK(a.patch.frame.reference.y() == Approx(-b.patch.frame.reference.y()).epsilon(1e-12));
+  CHECK(a.patch.frame.contact_angle() == Approx(b.patch.frame.contact_angle()).epsilon(1e-9));
+  CHECK(a.solution.contact_count() == b.solution.contact_count());
+  CHECK(std::abs(result.lateral_force) < 1e-6 * 2e5);
+}
+
+TEST_CASE("Yaw moves the right patch back and the left patch forward", "[wheelrail][equilibrium]") {
+  const wr::Track track;
+  const wr::Wheelset wheelset;
+  for (double yaw_deg : {1.0, -1.0}) {
+    const auto result = wr::solve_equilibrium(track, wheelset, 0, yaw_deg * M_PI / 180, 2e5, coarse());
+    REQUIRE(result.ok());
+    for (const auto& [patch, solution] : result.patches) {
+      const double expected = (patch.frame.side == wr::Side::right ? -1 : 1) * (yaw_deg > 0 ? 1 : -1);
+      INFO(wr::to_string(patch.frame.side) << " wheel at yaw " << yaw_deg << " deg: x = " << patch.frame.reference.x());
+      CHECK(patch.frame.reference.x() * expected > 0.012);  // ≈ 12.8 mm (§6.3 rigid: 12.973 mm)
+    }
+  }
+}
+
+TEST_CASE("Equilibrium input is checked by name", "[wheelrail][equilibrium]") {
+  const wr::Track track;
+  const wr::Wheelset wheelset;
+  CHECK_THROWS_WITH(wr::solve_equilibrium(track, wheelset, 0, 0, -1), Contains("load"));
+  CHECK_THROWS_WITH(wr::solve_equilibrium(track, wheelset, std::nan(""), 0, 2e5), Contains("y must"));
+  CHECK_THROWS_WITH(wr::solve_equilibrium(track, wheelset, 0, 0.5, 2e5), Contains("yaw"));
+  CHECK_THROWS_WITH(wr::solve_single_wheel(track, wheelset, wr::Side::left, 0, 0, 0), Contains("vertical_force"));
+  CHECK_THROWS_WITH(wr::solve_single_wheel(track, wheelset, wr::Side::left, 0, 0, 1e5, {}, 0.3), Contains("roll"));
+  auto options = coarse();
+  options.solver = "spline";
+  CHECK_THROWS_WITH(wr::solve_equilibrium(track, wheelset, 0, 0, 2e5, options), Contains("unknown solver"));
+  options = coarse();
+  options.grid.elements = 2;
+  CHECK_THROWS_WITH(wr::solve_equilibrium(track, wheelset, 0, 0, 2e5, options), Contains("elements"));
+}
+
+TEST_CASE("A step limit too small is a status, not an exception", "[wheelrail][equilibrium]") {
+  const wr::Track track;
+  const wr::Wheelset wheelset;
+  auto options = coarse();
+  options.max_iterations = 1;
+  const auto result = wr::solve_equilibrium(track, wheelset, 3e-3, 0, 2e5, options);
+  CHECK(result.status == wr::EquilibriumStatus::not_converged);
+  CHECK_FALSE(result.ok());
+  CHECK_THAT(result.message, Contains("1 steps"));
+}
+
+namespace {
+
+// Single-wheel mode on every wr_* case: FZ = 100 kN on CONTACT's wheel, roll 0.
+void compare_with_contact(Eigen::Index elements) {
+  const auto files = fastnorm::test::wheelrail_peer_cases();
+  if (files.empty()) return;
+  const wr::Track track;
+  const wr::Wheelset wheelset;
+  auto options = coarse();
+  options.grid.elements = elements;
+  double worst_force = 0, worst_y = 0, worst_angle = 0, worst_z = 0;
+  for (const auto& path : files) {
+    const auto setup = fastnorm::test::read_wheelrail_case(path);
+    const auto problem = fastnorm::read_case_file<double>(path);
+    const auto result = wr::solve_single_wheel(track, wheelset, setup.side, setup.y_mm * 1e-3, setup.yaw, 1e5, options);
+    INFO(std::filesystem::path(path).filename().string());
+    REQUIRE(result.ok());
+    REQUIRE(result.patches.size() == 1);
+    const auto& [patch, solution] = result.patches[0];
+    const double force = solution.normal_force / problem.result->normal_force - 1;
+    const double y = patch.frame.reference.y() * 1e3 - setup.ycp;
+    const double angle = patch.frame.contact_angle() - std::abs(setup.deltcp);
+    const double z = result.pose.z * 1e3 - setup.z_mm;
+    INFO("Fn " << force << ", y " << y << " mm, angle " << angle << " rad, z " << z << " mm");
+    CHECK(std::abs(force) <= 5e-5);   // issue: 0.5 %; measured ≤ 2.1e-5
+    CHECK(std::abs(y) <= 0.01);       // issue: 0.5 mm; measured ≤ 0.0056 mm
+    CHECK(std::abs(angle) <= 2e-4);   // issue: 5 mrad; measured ≤ 6e-5 (DELTCP has 4 decimals)
+    CHECK(std::abs(z) <= 2e-4);       // CONTACT's z has 4 decimals
+    worst_force = std::max(worst_force, std::abs(force));
+    worst_y = std::max(worst_y, std::abs(y));
+    worst_angle = std::max(worst_angle, std::abs(angle));
+    worst_z = std::max(worst_z, std::abs(z));
+  }
+  WARN(elements << " elements: max |Fn/Fn_CONTACT - 1| " << worst_force << ", max |y - YCP| " << worst_y
+                << " mm, max |angle - |DELTCP|| " << worst_angle << " rad, max |z - Z| " << worst_z << " mm");
+}
+
+}  // namespace
+
+TEST_CASE("Single-wheel mode reproduces CONTACT's wr_* patches", "[wheelrail][equilibrium][peer]") {
+  compare_with_contact(30);
+}
+
+TEST_CASE("Single-wheel mode reproduces CONTACT's wr_* patches at 60 elements", "[wheelrail][equilibrium][peer][large]") {
+  compare_with_contact(60);
+}
