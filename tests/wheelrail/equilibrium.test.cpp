@@ -110,6 +110,19 @@ TEST_CASE("A step limit too small is a status, not an exception", "[wheelrail][e
   CHECK_THAT(result.message, Contains("1 steps"));
 }
 
+TEST_CASE("A wheel lifted off its rail is a lost-contact status", "[wheelrail][equilibrium]") {
+  const wr::Track track;
+  const wr::Wheelset wheelset;
+  auto options = coarse();
+  options.start = wr::WheelsetPose{0, -5e-3, 0, 0};  // 5 mm above the rails
+  const auto both = wr::solve_equilibrium(track, wheelset, 0, 0, 2e5, options);
+  CHECK(both.status == wr::EquilibriumStatus::lost_contact);
+  CHECK_THAT(both.message, Contains("does not touch"));
+  const auto one = wr::solve_single_wheel(track, wheelset, wr::Side::right, 0, 0, 1e5, options);
+  CHECK(one.status == wr::EquilibriumStatus::lost_contact);
+  CHECK(one.patches.empty());
+}
+
 namespace {
 
 // Single-wheel mode on every wr_* case: FZ = 100 kN on CONTACT's wheel, roll 0.
