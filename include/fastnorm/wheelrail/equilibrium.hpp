@@ -119,9 +119,10 @@ inline Equilibrium find_equilibrium(const Track& track, const Wheelset& wheelset
       solvers.emplace_back(options.solver, grid, material);
     }
     const std::size_t count = patches.size();
-    Eigen::VectorXd cosine(count), lever(count);
+    Eigen::VectorXd cosine(count), lever(count), overlap(count);  // overlap: −min h, the rigid approach
     for (std::size_t k = 0; k < count; ++k) {
       const auto& frame = patches[k].frame;
+      overlap(static_cast<Eigen::Index>(k)) = -patches[k].undeformed_distance.minCoeff();
       const Eigen::Vector3d arm = frame.reference - wheelset.centre(pose);
       cosine(k) = std::cos(frame.inclination);
       lever(k) = arm.y() * std::cos(frame.inclination) + arm.z() * std::sin(frame.inclination);
@@ -146,7 +147,7 @@ inline Equilibrium find_equilibrium(const Track& track, const Wheelset& wheelset
         }
         force(e) = solutions[k].normal_force;
         // dN/d(approach): secant on the last two solves, else a Hertz-like 1.5·N/pen.
-        const double penetration = approach(e) - patches[k].undeformed_distance.minCoeff();
+        const double penetration = approach(e) + overlap(e);
         const double change = approach(e) - previous_approach(e);
         if (std::isfinite(change) && std::abs(change) > 1e-13 && force(e) > 0 && previous_force(e) > 0) {
           stiffness(e) = (force(e) - previous_force(e)) / change;
@@ -159,26 +160,21 @@ inline Equilibrium find_equilibrium(const Track& track, const Wheelset& wheelset
       const Eigen::Vector2d residual(force.dot(cosine) - load, with_roll ? -force.dot(lever) : 0.0);
       const bool balanced = std::abs(residual(0)) <= options.force_tolerance * load &&
                             std::abs(residual(1)) <= options.force_tolerance * load * lever_scale;
-      if (balanced) {
+      if (balanced && !first) {  // the pose moved: find the patches again
         pose.z += motion(0);
         pose.roll += motion(1);
+        break;
+      }
+      if (balanced) {  // balanced at the pass's own pose (no motion): exact h, done
         for (std::size_t k = 0; k < count; ++k) {
-          patches[k].undeformed_distance.array() -= approach(static_cast<Eigen::Index>(k));
           result.patches.push_back({patches[k], solutions[k]});
+          result.lateral_force += force(static_cast<Eigen::Index>(k)) * std::sin(patches[k].frame.inclination);
         }
         result.vertical_residual = residual(0);
         result.roll_residual = residual(1);
         result.vertical_force = force.dot(cosine);
-        for (std::size_t k = 0; k < count; ++k) {
-          result.lateral_force += force(static_cast<Eigen::Index>(k)) * std::sin(patches[k].frame.inclination);
-        }
-        if (first) {  // balanced at the pass's own pose: exact h, done
-          result.pose = pose;
-          return result;
-        }
-        result.patches.clear();
-        result.lateral_force = 0;
-        break;  // the pose moved: find the patches again
+        result.pose = pose;
+        return result;
       }
       first = false;
       Eigen::Matrix2d jacobian = Eigen::Matrix2d::Identity();
@@ -201,7 +197,7 @@ inline Equilibrium find_equilibrium(const Track& track, const Wheelset& wheelset
         }
       }
       if (jacobian(0, 0) <= 0) {  // nothing in contact yet: press on by the deepest overlap
-        motion(0) += std::abs(patches[0].undeformed_distance.minCoeff()) + 1e-6;
+        motion(0) += std::abs(overlap(0)) + 1e-6;
         continue;
       }
       motion -= jacobian.partialPivLu().solve(residual);
