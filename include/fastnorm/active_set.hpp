@@ -84,10 +84,25 @@ Scalar approach_guess(const Eigen::Matrix<Scalar, Eigen::Dynamic, 1>& h0, Scalar
   return sorted.front() + normal_force / stiffness(sorted.size());
 }
 
+/// The sorted element numbers in contact: the warm start of the next problem of a sequence
+/// (empty, i.e. a cold start, unless the solution is usable).
+template <typename Scalar>
+std::vector<Eigen::Index> contact_set(const Solution<Scalar>& solution) {
+  std::vector<Eigen::Index> set;
+  if (!solution.ok()) return set;
+  for (Eigen::Index k = 0; k < solution.in_contact.size(); ++k) {
+    if (solution.in_contact(k)) set.push_back(k);
+  }
+  return set;
+}
+
 /// The active-set loop of docs/norm.md §1 around a solver of the problem restricted to a
 /// set. `set_solver.solve(active, rhs)` receives the sorted element numbers of the set and
 /// right-hand sides over it (n × 1: −h_I; n × 2 in force control: −h0_I and 1) and returns
 /// the pressures on the set for each column, or nothing if its factorisation failed.
+///
+/// `start_set` (sorted element numbers) replaces the starting set of step 1 when not empty:
+/// a warm start from the previous contact set of a sequence of problems.
 ///
 /// Cycles are ended deterministically: when a set comes back, the loop stops with
 /// Status::cycled and the last set whose pressures were all positive. (A cycle contains a
@@ -96,7 +111,7 @@ template <typename Scalar, typename SetSolver>
 Solution<Scalar> solve_active_set(const InfluenceTable<Scalar>& influence,
                                   const Eigen::Ref<const Eigen::Matrix<Scalar, Eigen::Dynamic, 1>>& h,
                                   const Loading<Scalar>& loading, const ActiveSetOptions<Scalar>& options,
-                                  SetSolver& set_solver) {
+                                  SetSolver& set_solver, const std::vector<Eigen::Index>& start_set = {}) {
   using Index = Eigen::Index;
   using Vector = Eigen::Matrix<Scalar, Eigen::Dynamic, 1>;
   using Matrix = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;
@@ -124,9 +139,11 @@ Solution<Scalar> solve_active_set(const InfluenceTable<Scalar>& influence,
     return solution;
   }
   const Scalar start_below = approach + options.start_depth_fraction * (deepest - approach);
-  std::vector<Index> active;
-  for (Index k = 0; k < n_all; ++k) {
-    if (h(k) <= start_below) active.push_back(k);
+  std::vector<Index> active = start_set;
+  if (active.empty()) {
+    for (Index k = 0; k < n_all; ++k) {
+      if (h(k) <= start_below) active.push_back(k);
+    }
   }
 
   auto store = [&](const std::vector<Index>& set, const Vector& pressure, Scalar delta) {

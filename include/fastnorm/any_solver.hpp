@@ -1,24 +1,25 @@
 #pragma once
 /// @file any_solver.hpp
 /// A solver chosen at run time by name (for tools and studies that compare solvers):
-///   norm | elliptic | polynomial[:G] | elliptic-edge[:K] | polynomial-edge[:G[:K]]
+///   norm | cg | elliptic | polynomial[:G] | elliptic-edge[:K] | polynomial-edge[:G[:K]]
 /// G is the polynomial grade (default 4), K the free edge elements per segment end
 /// (default 1).
 
-#include <functional>
 #include <memory>
 #include <sstream>
 #include <string>
 #include <vector>
 
 #include "fastnorm/bases.hpp"
+#include "fastnorm/cg_solver.hpp"
 #include "fastnorm/error.hpp"
 #include "fastnorm/norm_solver.hpp"
 #include "fastnorm/reduced_solver.hpp"
 
 namespace fastnorm {
 
-/// Any of fastnorm's solvers behind one interface.
+/// Any of fastnorm's solvers behind one interface. A copy is a separate solver with its own
+/// memory of the sequence (see solve_next).
 template <typename Scalar = double>
 class AnySolver {
  public:
@@ -52,6 +53,9 @@ class AnySolver {
     if (kind == "norm") {
       max_parts(1);
       adopt(NormSolver<Scalar>(grid, material, options), "norm");
+    } else if (kind == "cg") {
+      max_parts(1);
+      adopt(CgSolver<Scalar>(grid, material), "cg");
     } else if (kind == "elliptic") {
       max_parts(1);
       adopt(ReducedSolver<EllipticBasis, Scalar>(grid, material, EllipticBasis(), options), kind);
@@ -70,30 +74,66 @@ class AnySolver {
       adopt(ReducedSolver<PolynomialEdgeBasis, Scalar>(grid, material, basis, options), basis.name());
     } else {
       FASTNORM_CHECK(false, "unknown solver '" + name +
-                                "' (known: norm, elliptic, polynomial[:G], elliptic-edge[:K], "
+                                "' (known: norm, cg, elliptic, polynomial[:G], elliptic-edge[:K], "
                                 "polynomial-edge[:G[:K]])");
     }
   }
 
+  AnySolver(const AnySolver& other) : model_(other.model_->clone()), name_(other.name_) {}
+  AnySolver& operator=(const AnySolver& other) {
+    if (this != &other) *this = AnySolver(other);
+    return *this;
+  }
+  AnySolver(AnySolver&&) noexcept = default;
+  AnySolver& operator=(AnySolver&&) noexcept = default;
+  ~AnySolver() = default;
+
   /// The canonical name, with defaults filled in (e.g. "polynomial:4").
   const std::string& name() const { return name_; }
 
-  /// As NormSolver::solve.
+  /// As NormSolver::solve: a cold solve.
   Solution<Scalar> solve(const Eigen::Ref<const Vector>& undeformed_distance, const Loading<Scalar>& loading) const {
-    return solve_(undeformed_distance, loading);
+    return model_->solve(undeformed_distance, loading);
   }
 
+  /// As NormSolver::solve_next: warm-started from the previous solve_next of this object.
+  Solution<Scalar> solve_next(const Eigen::Ref<const Vector>& undeformed_distance, const Loading<Scalar>& loading) {
+    return model_->solve_next(undeformed_distance, loading);
+  }
+
+  /// The next solve_next starts cold.
+  void reset() { model_->reset(); }
+
  private:
+  struct Model {
+    virtual ~Model() = default;
+    virtual Solution<Scalar> solve(const Eigen::Ref<const Vector>& h, const Loading<Scalar>& loading) const = 0;
+    virtual Solution<Scalar> solve_next(const Eigen::Ref<const Vector>& h, const Loading<Scalar>& loading) = 0;
+    virtual void reset() = 0;
+    virtual std::unique_ptr<Model> clone() const = 0;
+  };
+
+  template <typename Solver>
+  struct Holder final : Model {
+    explicit Holder(Solver held) : solver(std::move(held)) {}
+    Solution<Scalar> solve(const Eigen::Ref<const Vector>& h, const Loading<Scalar>& loading) const override {
+      return solver.solve(h, loading);
+    }
+    Solution<Scalar> solve_next(const Eigen::Ref<const Vector>& h, const Loading<Scalar>& loading) override {
+      return solver.solve_next(h, loading);
+    }
+    void reset() override { solver.reset(); }
+    std::unique_ptr<Model> clone() const override { return std::make_unique<Holder>(solver); }
+    Solver solver;
+  };
+
   template <typename Solver>
   void adopt(Solver solver, const std::string& name) {
-    auto shared = std::make_shared<const Solver>(std::move(solver));
-    solve_ = [shared](const Eigen::Ref<const Vector>& h, const Loading<Scalar>& loading) {
-      return shared->solve(h, loading);
-    };
+    model_ = std::make_unique<Holder<Solver>>(std::move(solver));
     name_ = name;
   }
 
-  std::function<Solution<Scalar>(const Eigen::Ref<const Vector>&, const Loading<Scalar>&)> solve_;
+  std::unique_ptr<Model> model_;
   std::string name_;
 };
 

@@ -10,6 +10,8 @@
 #include "fastnorm/solution.hpp"
 #include "fastnorm/active_set.hpp"
 #include "fastnorm/norm_solver.hpp"
+#include "fastnorm/fft_convolution.hpp"
+#include "fastnorm/cg_solver.hpp"
 #include "fastnorm/strips.hpp"
 #include "fastnorm/bases.hpp"
 #include "fastnorm/reduced_solver.hpp"

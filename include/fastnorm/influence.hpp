@@ -169,6 +169,17 @@ class InfluenceTable {
     }
   }
 
+  /// displacement += pressure · C(·, source): adds the displacement (m) of every element due
+  /// to `pressure` (Pa) on the element `source`. Cost: grid.size().
+  void add_displacement(Index source, Scalar pressure, Eigen::Ref<Vector> displacement) const {
+    const Index mx = grid_.mx(), i = grid_.i_of(source), j = grid_.j_of(source);
+    for (Index row = 0; row < grid_.my(); ++row) {
+      // C(i_t − i, row − j) for i_t = 0…mx−1: a forward slice of one table column (even in x).
+      displacement.segment(row * mx, mx) +=
+          pressure * table_.col(std::abs(row - j)).segment(mx - 1 - i, mx);
+    }
+  }
+
   /// Displacements at every element due to a pressure on the whole grid: C p (m).
   /// Cost: grid.size() × (non-zero pressures).
   Vector displacement(const Eigen::Ref<const Vector>& pressure) const {

@@ -19,7 +19,8 @@ namespace fastnorm {
 
 /// Kalker's active-set NORM solver on a fixed grid and material.
 ///
-/// Keeps the influence table, so many problems on the same grid share it.
+/// Keeps the influence table, so many problems on the same grid share it; `solve_next`
+/// also keeps the last contact set and its factorisation for a sequence of problems.
 ///
 /// **Example**
 /// @code
@@ -54,24 +55,57 @@ class NormSolver {
   /// @throws fastnorm::invalid_argument for wrong sizes or non-finite h
   Solution<Scalar> solve(const Eigen::Ref<const Vector>& undeformed_distance,
                          const Loading<Scalar>& loading) const {
-    DenseSetSolver set_solver{influence_};
+    Factorisation factorisation;
+    DenseSetSolver set_solver{influence_, factorisation};
     return detail::solve_active_set(influence_, undeformed_distance, loading, options_, set_solver);
   }
 
+  /// As solve, for the next problem of a sequence on this grid: starts from the contact set
+  /// of the previous solve_next (cold on the first call and after reset()) and reuses its
+  /// factorisation while the set is unchanged. The answer is solve's (docs/performance.md §4).
+  Solution<Scalar> solve_next(const Eigen::Ref<const Vector>& undeformed_distance, const Loading<Scalar>& loading) {
+    DenseSetSolver set_solver{influence_, memory_};
+    Solution<Scalar> solution =
+        detail::solve_active_set(influence_, undeformed_distance, loading, options_, set_solver, last_set_);
+    last_set_ = detail::contact_set(solution);
+    return solution;
+  }
+
+  /// Forgets the previous contact set and factorisation: the next solve_next starts cold.
+  void reset() {
+    last_set_.clear();
+    memory_ = Factorisation();
+  }
+
  private:
-  /// Step 2 of NORM: C_II p = rhs with Eigen's Cholesky of the dense block, in place.
+  /// The Cholesky factor of C_II for the set I last solved (empty before the first solve;
+  /// optional also because Eigen leaves an unfactorised LLT's fields uninitialised).
+  struct Factorisation {
+    std::vector<Index> set;
+    std::optional<Eigen::LLT<Matrix>> cholesky;
+  };
+
+  /// Step 2 of NORM: C_II p = rhs with Eigen's Cholesky of the dense block.
   struct DenseSetSolver {
     const InfluenceTable<Scalar>& influence;
-    std::optional<Matrix> solve(const std::vector<Index>& active, const Matrix& rhs) const {
-      Matrix block = influence.dense_block(active);
-      Eigen::LLT<Eigen::Ref<Matrix>> cholesky(block);
-      if (cholesky.info() != Eigen::Success) return std::nullopt;
-      return Matrix(cholesky.solve(rhs));
+    Factorisation& factorisation;
+    std::optional<Matrix> solve(const std::vector<Index>& active, const Matrix& rhs) {
+      if (!factorisation.cholesky || active != factorisation.set) {
+        factorisation.set = active;
+        factorisation.cholesky.emplace(influence.dense_block(active));
+      }
+      if (factorisation.cholesky->info() != Eigen::Success) {
+        factorisation.cholesky.reset();
+        return std::nullopt;
+      }
+      return Matrix(factorisation.cholesky->solve(rhs));
     }
   };
 
   InfluenceTable<Scalar> influence_;
   Options options_;
+  std::vector<Index> last_set_;
+  Factorisation memory_;
 };
 
 }  // namespace fastnorm

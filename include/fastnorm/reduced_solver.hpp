@@ -24,29 +24,57 @@ namespace fastnorm {
 
 namespace detail {
 
+/// What a Galerkin set solver keeps from one set to the next, and across the problems of a
+/// sequence: the basis blocks per segment length, the last assembly of Aᵀ C_II A and its
+/// Cholesky factor, and the assembly workspace.
+template <typename Scalar>
+struct GalerkinMemory {
+  using Index = Eigen::Index;
+  using Matrix = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;
+  struct Assembly {
+    std::vector<Segment> segments;
+    std::vector<Index> offsets;  // first unknown of each segment
+    Matrix matrix;               // Aᵀ C_II A, lower triangle filled
+  };
+  std::vector<Matrix> blocks;  // basis block per segment element count
+  Assembly previous;
+  std::optional<Eigen::LLT<Matrix, Eigen::Lower>> cholesky;  // of previous.matrix, once factorised
+  Matrix coupling, times_basis;  // workspace of the assembly
+};
+
 /// Step 2 of the reduced method on one set: segments, basis blocks, Galerkin matrix
-/// assembled by pairs of segments from the Toeplitz table, solve, expansion. Keeps the
-/// previous set's assembly so that blocks between unchanged segments are copied, not
-/// recomputed (docs/method.md §3). One object per solve.
+/// assembled by pairs of segments from the Toeplitz table, solve, expansion. Blocks between
+/// segments that did not change since the previous set are copied, not recomputed, and an
+/// unchanged set reuses the factorisation (docs/method.md §3, docs/performance.md §3).
 template <typename Basis, typename Scalar>
 class GalerkinSetSolver {
  public:
   using Index = Eigen::Index;
   using Matrix = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;
+  using Memory = GalerkinMemory<Scalar>;
+  using Assembly = typename Memory::Assembly;
 
-  GalerkinSetSolver(const InfluenceTable<Scalar>& influence, const Basis& basis)
-      : influence_(influence), basis_(basis) {}
+  GalerkinSetSolver(const InfluenceTable<Scalar>& influence, const Basis& basis, Memory& memory)
+      : influence_(influence), basis_(basis), memory_(memory) {}
 
   std::optional<Matrix> solve(const std::vector<Index>& active, const Matrix& rhs) {
-    Assembly next;
-    next.segments = segment_strips(influence_.grid(), active);
-    Index unknowns = 0;
-    for (const Segment& segment : next.segments) {
-      next.offsets.push_back(unknowns);
-      unknowns += unknowns_of(segment.count);
+    Assembly& previous = memory_.previous;
+    std::vector<Segment> segments = segment_strips(influence_.grid(), active);
+    if (!memory_.cholesky || segments != previous.segments) {
+      Assembly next;
+      next.segments = std::move(segments);
+      Index unknowns = 0;
+      for (const Segment& segment : next.segments) {
+        next.offsets.push_back(unknowns);
+        unknowns += unknowns_of(segment.count);
+      }
+      next.matrix.resize(unknowns, unknowns);
+      assemble(next);
+      previous = std::move(next);
+      memory_.cholesky.emplace(previous.matrix);
     }
-    next.matrix.resize(unknowns, unknowns);
-    assemble(next);
+    const Assembly& next = previous;
+    const Index unknowns = next.matrix.rows();
 
     // Right-hand sides Aᵀ rhs, segment by segment.
     Matrix reduced_rhs(unknowns, rhs.cols());
@@ -58,15 +86,17 @@ class GalerkinSetSolver {
     }
 
     Matrix coefficients;
-    Eigen::LLT<Matrix, Eigen::Lower> cholesky(next.matrix);
-    if (cholesky.info() == Eigen::Success) {
-      coefficients = cholesky.solve(reduced_rhs);
+    if (memory_.cholesky->info() == Eigen::Success) {
+      coefficients = memory_.cholesky->solve(reduced_rhs);
     } else {
       // A without full column rank makes Aᵀ C A singular: take the minimum-norm solution.
       const Matrix full = next.matrix.template selfadjointView<Eigen::Lower>();
       const Eigen::CompleteOrthogonalDecomposition<Matrix> decomposition(full);
       coefficients = decomposition.solve(reduced_rhs);
-      if (!coefficients.allFinite()) return std::nullopt;
+      if (!coefficients.allFinite()) {
+        memory_.cholesky.reset();
+        return std::nullopt;
+      }
     }
 
     // Pressures p_I = A α.
@@ -77,17 +107,10 @@ class GalerkinSetSolver {
       auto target = pressure.middleRows(segment.set_position, segment.count);
       if (is_identity(segment.count)) target = alpha; else target.noalias() = basis_of(segment.count) * alpha;
     }
-    previous_ = std::move(next);
     return pressure;
   }
 
  private:
-  struct Assembly {
-    std::vector<Segment> segments;
-    std::vector<Index> offsets;  // first unknown of each segment
-    Matrix matrix;               // Aᵀ C_II A, lower triangle filled
-  };
-
   /// A segment with no more elements than the basis has functions keeps one unknown per
   /// element (identity block), as the paper does at leading and trailing edges.
   bool is_identity(Index count) const { return count <= basis_.unknowns(); }
@@ -95,15 +118,16 @@ class GalerkinSetSolver {
 
   /// The basis block of a segment depends only on its element count: cached per count.
   const Matrix& basis_of(Index count) {
-    if (static_cast<Index>(blocks_.size()) <= count) blocks_.resize(static_cast<std::size_t>(count) + 1);
-    auto& block = blocks_[static_cast<std::size_t>(count)];
+    auto& blocks = memory_.blocks;
+    if (static_cast<Index>(blocks.size()) <= count) blocks.resize(static_cast<std::size_t>(count) + 1);
+    auto& block = blocks[static_cast<std::size_t>(count)];
     if (block.size() == 0) block = basis_.template block<Scalar>(count);
     return block;
   }
 
   /// Position of `segment` in the previous assembly, or −1.
   Index previous_index(const Segment& segment) const {
-    const auto& old = previous_.segments;
+    const auto& old = memory_.previous.segments;
     const auto at = std::lower_bound(old.begin(), old.end(), segment, [](const Segment& a, const Segment& b) {
       return a.strip < b.strip || (a.strip == b.strip && a.first < b.first);
     });
@@ -126,8 +150,8 @@ class GalerkinSetSolver {
         const Index q_t = unknowns_of(next.segments[t].count);
         if (old_index[s] >= 0 && old_index[t] >= 0) {  // both unchanged: copy
           next.matrix.block(next.offsets[t], next.offsets[s], q_t, q_s) =
-              previous_.matrix.block(previous_.offsets[static_cast<std::size_t>(old_index[t])],
-                                     previous_.offsets[static_cast<std::size_t>(old_index[s])], q_t, q_s);
+              memory_.previous.matrix.block(memory_.previous.offsets[static_cast<std::size_t>(old_index[t])],
+                                     memory_.previous.offsets[static_cast<std::size_t>(old_index[s])], q_t, q_s);
         } else {
           targets.push_back(t);
           rows += next.segments[t].count;
@@ -135,17 +159,17 @@ class GalerkinSetSolver {
       }
       if (targets.empty()) continue;
       // C_ts(m, n) = C(|i_t + m − i_s − n|, |j_t − j_s|): one column of the table each.
-      coupling_.resize(rows, source.count);
+      memory_.coupling.resize(rows, source.count);
       Index row = 0;
       for (std::size_t t : targets) {
         const Segment& target = next.segments[t];
         influence_.fill_toeplitz(target.first - source.first, target.strip - source.strip,
-                                 coupling_.middleRows(row, target.count));
+                                 memory_.coupling.middleRows(row, target.count));
         row += target.count;
       }
       const bool source_identity = is_identity(source.count);
-      if (!source_identity) times_basis_.noalias() = coupling_ * basis_of(source.count);
-      const Matrix& half = source_identity ? coupling_ : times_basis_;
+      if (!source_identity) memory_.times_basis.noalias() = memory_.coupling * basis_of(source.count);
+      const Matrix& half = source_identity ? memory_.coupling : memory_.times_basis;
       row = 0;
       for (std::size_t t : targets) {
         const Segment& target = next.segments[t];
@@ -162,9 +186,7 @@ class GalerkinSetSolver {
 
   const InfluenceTable<Scalar>& influence_;
   const Basis& basis_;
-  std::vector<Matrix> blocks_;
-  Assembly previous_;
-  Matrix coupling_, times_basis_;  // workspace of assemble()
+  Memory& memory_;
 };
 
 }  // namespace detail
@@ -200,14 +222,36 @@ class ReducedSolver {
   /// @throws fastnorm::invalid_argument for wrong sizes or non-finite h
   Solution<Scalar> solve(const Eigen::Ref<const Vector>& undeformed_distance,
                          const Loading<Scalar>& loading) const {
-    detail::GalerkinSetSolver<Basis, Scalar> set_solver(influence_, basis_);
+    Memory memory;
+    detail::GalerkinSetSolver<Basis, Scalar> set_solver(influence_, basis_, memory);
     return detail::solve_active_set(influence_, undeformed_distance, loading, options_, set_solver);
   }
 
+  /// As solve, for the next problem of a sequence on this grid: starts from the contact set
+  /// of the previous solve_next (cold on the first call and after reset()), copies the
+  /// Galerkin blocks of segments that did not change and reuses the factorisation while the
+  /// set is unchanged (docs/performance.md §3–4).
+  Solution<Scalar> solve_next(const Eigen::Ref<const Vector>& undeformed_distance, const Loading<Scalar>& loading) {
+    detail::GalerkinSetSolver<Basis, Scalar> set_solver(influence_, basis_, memory_);
+    Solution<Scalar> solution =
+        detail::solve_active_set(influence_, undeformed_distance, loading, options_, set_solver, last_set_);
+    last_set_ = detail::contact_set(solution);
+    return solution;
+  }
+
+  /// Forgets the previous contact set and assembly: the next solve_next starts cold.
+  void reset() {
+    last_set_.clear();
+    memory_ = Memory();
+  }
+
  private:
+  using Memory = detail::GalerkinMemory<Scalar>;
   InfluenceTable<Scalar> influence_;
   Basis basis_;
   Options options_;
+  std::vector<Eigen::Index> last_set_;
+  Memory memory_;
 };
 
 }  // namespace fastnorm

@@ -104,7 +104,7 @@ TEST_CASE("fastnorm-solve rejects bad input with status 2 and writes nothing", "
     std::string arguments, message;
   };
   for (const Bad& c : {Bad{bad.string(), "bad.case:4"}, Bad{(dir / "missing.case").string(), "missing.case"},
-                       Bad{good.string() + " --solver cg", "unknown solver 'cg'"},
+                       Bad{good.string() + " --solver multigrid", "unknown solver 'multigrid'"},
                        Bad{good.string() + " --solver polynomial:99", "grade"},
                        Bad{good.string() + " --control sideways", "--control"},
                        Bad{good.string() + " --bogus", "unknown option '--bogus'"},

@@ -1,9 +1,10 @@
-// Full NORM against CONTACT's own solutions of ../shared/peer-cases (docs/validation.md §2).
-// CONTACT discretises exactly as fastnorm does and solved to 1e-9, so the exact active-set
-// solve must agree to: force 1e-7 relative, every pressure 1e-6 of the peak, and the
-// identical contact set.
+// The full solvers, NORM and CG, against CONTACT's own solutions of ../shared/peer-cases
+// (docs/validation.md §2). CONTACT discretises exactly as fastnorm does and solved to 1e-9,
+// so an exact solve must agree to: force 1e-7 relative, every pressure 1e-6 of the peak, and
+// the identical contact set. CG runs at its default tolerance, 1e-9.
 #include <catch2/catch.hpp>
 #include <fastnorm/case_file.hpp>
+#include <fastnorm/cg_solver.hpp>
 #include <fastnorm/norm_solver.hpp>
 
 #include "support/complementarity.hpp"
@@ -11,11 +12,12 @@
 
 namespace {
 
+template <typename Solver>
 void check_against_contact(const std::string& path) {
   const auto problem = fastnorm::read_case_file(path);
   REQUIRE(problem.result.has_value());
   const auto& reference = *problem.result;
-  const fastnorm::NormSolver<> solver(problem.grid, problem.material);
+  const Solver solver(problem.grid, problem.material);
 
   // Force control as the case says; approach control on h minus CONTACT's approach.
   // The wr_* cases store h with the approach already in it (their stored approach is 0);
@@ -45,20 +47,25 @@ void check_against_contact(const std::string& path) {
   }
 }
 
+template <typename Solver>
 void check_files(const std::vector<std::string>& files) {
   if (files.empty()) {
     WARN("peer cases not found in " << fastnorm::test::peer_cases_dir() << ": skipped");
     return;
   }
   for (const auto& path : files) {
-    DYNAMIC_SECTION(path) { check_against_contact(path); }
+    DYNAMIC_SECTION(path) { check_against_contact<Solver>(path); }
   }
 }
 
 }  // namespace
 
 TEST_CASE("NORM reproduces CONTACT on the wheel-rail peer cases", "[norm][peer]") {
-  check_files(fastnorm::test::peer_case_files("wr_"));
+  check_files<fastnorm::NormSolver<>>(fastnorm::test::peer_case_files("wr_"));
+}
+
+TEST_CASE("CG reproduces CONTACT on every peer case", "[norm][cg][peer]") {
+  check_files<fastnorm::CgSolver<>>(fastnorm::test::peer_case_files());
 }
 
 TEST_CASE("NORM reproduces CONTACT on the Hertz peer cases up to 60x60", "[norm][peer]") {
@@ -66,9 +73,9 @@ TEST_CASE("NORM reproduces CONTACT on the Hertz peer cases up to 60x60", "[norm]
   files.erase(std::remove_if(files.begin(), files.end(),
                              [](const std::string& f) { return f.find("120x120") != std::string::npos; }),
               files.end());
-  check_files(files);
+  check_files<fastnorm::NormSolver<>>(files);
 }
 
 TEST_CASE("NORM reproduces CONTACT on the 120x120 Hertz peer case", "[norm][peer][large]") {
-  check_files(fastnorm::test::peer_case_files("hertz_sphere_120x120"));
+  check_files<fastnorm::NormSolver<>>(fastnorm::test::peer_case_files("hertz_sphere_120x120"));
 }

@@ -1,0 +1,143 @@
+#pragma once
+/// @file fft_convolution.hpp
+/// The product u = C p over the whole grid as a zero-padded 2-D FFT convolution of the
+/// Toeplitz kernel (docs/performance.md §2): O(N log N) time and O(N) memory, where the
+/// direct product costs O(N²).
+
+#include <unsupported/Eigen/FFT>
+
+#include <Eigen/Core>
+#include <algorithm>
+#include <complex>
+#include <vector>
+
+#include "fastnorm/error.hpp"
+#include "fastnorm/influence.hpp"
+
+namespace fastnorm {
+
+namespace detail {
+
+/// Smallest n ≥ minimum that is a multiple of `multiple_of` and has no prime factor above 5:
+/// the lengths Eigen's FFT (kissfft) handles with its fast radices.
+inline Eigen::Index smooth_fft_length(Eigen::Index minimum, Eigen::Index multiple_of) {
+  for (Eigen::Index n = minimum;; ++n) {
+    if (n % multiple_of != 0) continue;
+    Eigen::Index rest = n;
+    for (Eigen::Index factor : {2, 3, 5}) {
+      while (rest % factor == 0) rest /= factor;
+    }
+    if (rest == 1) return n;
+  }
+}
+
+}  // namespace detail
+
+/// u = C p on a grid by FFT. The kernel offsets (di, dj), |di| < mx, |dj| < my, are laid
+/// out circularly on an nx × ny grid with nx ≥ 2mx − 1, ny ≥ 2my − 1, so the circular
+/// convolution of the zero-padded p equals the Toeplitz product on the grid. The kernel is
+/// even in x and y, so its transform is real; it is computed once, with the 1/(nx·ny) of
+/// the inverse transform folded in.
+///
+/// Transforms: real-to-half-complex along x for the my rows that hold pressure, complex
+/// along y for the nx/2 + 1 frequencies, and back. All workspace is allocated by the
+/// constructor: `apply` does not allocate. An object is not safe to share between threads
+/// (the FFT plans and workspace are its own); copy it instead.
+///
+/// **Example**
+/// @code
+/// fastnorm::InfluenceTable<> table(grid, steel);
+/// fastnorm::FftConvolution<> convolution(table);
+/// Eigen::VectorXd u(grid.size());
+/// convolution.apply(pressure, u);   // u = C p (m), pressure in Pa
+/// @endcode
+template <typename Scalar = double>
+class FftConvolution {
+ public:
+  using Index = Eigen::Index;
+  using Vector = Eigen::Matrix<Scalar, Eigen::Dynamic, 1>;
+  using Complex = std::complex<Scalar>;
+
+  explicit FftConvolution(const InfluenceTable<Scalar>& influence)
+      : mx_(influence.grid().mx()),
+        my_(influence.grid().my()),
+        nx_(detail::smooth_fft_length(2 * mx_, 4)),  // multiple of 4: kissfft's fast real path
+        ny_(detail::smooth_fft_length(std::max<Index>(2 * my_ - 1, 2), 1)),  // kissfft needs n ≥ 2
+        half_(nx_ / 2 + 1),
+        fft_(typename Eigen::FFT<Scalar>::impl_type(),
+             static_cast<typename Eigen::FFT<Scalar>::Flag>(Eigen::FFT<Scalar>::Unscaled |
+                                                           Eigen::FFT<Scalar>::HalfSpectrum)),
+        symbol_(half_, ny_),
+        spectrum_(half_, ny_),
+        line_(static_cast<std::size_t>(ny_)),
+        line_spectrum_(static_cast<std::size_t>(ny_)),
+        real_line_(nx_) {
+    // The kernel on the circular nx × ny grid: offset d sits at d mod n.
+    Vector row(nx_);
+    for (Index j = 0; j < ny_; ++j) {
+      const Index dj = j < my_ ? j : j - ny_;
+      row.setZero();
+      if (dj > -my_) {
+        for (Index i = 0; i < nx_; ++i) {
+          const Index di = i < mx_ ? i : i - nx_;
+          if (di > -mx_) row(i) = influence.at_offset(di, dj);
+        }
+      }
+      fft_.fwd(spectrum_.col(j).data(), row.data(), nx_);
+    }
+    for (Index kx = 0; kx < half_; ++kx) {
+      forward_along_y(kx);
+      // Even kernel: the imaginary parts are round-off; keep the real part.
+      for (Index ky = 0; ky < ny_; ++ky) {
+        symbol_(kx, ky) = line_spectrum_[static_cast<std::size_t>(ky)].real() / static_cast<Scalar>(nx_ * ny_);
+      }
+    }
+    // One product creates the inverse plans and buffers, so that apply() never allocates.
+    Vector zero = Vector::Zero(mx_ * my_);
+    apply(zero, zero);
+  }
+
+  Index padded_x() const { return nx_; }
+  Index padded_y() const { return ny_; }
+
+  /// u = C p: displacements (m) at every element due to the pressures p (Pa).
+  /// @param pressure grid.size() values, element k = i + mx·j
+  /// @param displacement grid.size() values, overwritten
+  void apply(const Eigen::Ref<const Vector>& pressure, Eigen::Ref<Vector> displacement) {
+    FASTNORM_CHECK(pressure.size() == mx_ * my_ && displacement.size() == mx_ * my_,
+                   detail::describe("fft convolution: pressure and displacement must have grid.size() values",
+                                    pressure.size()));
+    for (Index j = 0; j < my_; ++j) {
+      real_line_.head(mx_) = pressure.segment(j * mx_, mx_);
+      real_line_.tail(nx_ - mx_).setZero();
+      fft_.fwd(spectrum_.col(j).data(), real_line_.data(), nx_);
+    }
+    spectrum_.rightCols(ny_ - my_).setZero();
+    for (Index kx = 0; kx < half_; ++kx) {
+      forward_along_y(kx);
+      for (Index ky = 0; ky < ny_; ++ky) line_spectrum_[static_cast<std::size_t>(ky)] *= symbol_(kx, ky);
+      fft_.inv(line_.data(), line_spectrum_.data(), ny_);
+      for (Index j = 0; j < my_; ++j) spectrum_(kx, j) = line_[static_cast<std::size_t>(j)];  // rows ≥ my unused
+    }
+    for (Index j = 0; j < my_; ++j) {
+      fft_.inv(real_line_.data(), spectrum_.col(j).data(), nx_);
+      displacement.segment(j * mx_, mx_) = real_line_.head(mx_);
+    }
+  }
+
+ private:
+  /// Row kx of spectrum_ transformed along y into line_spectrum_.
+  void forward_along_y(Index kx) {
+    for (Index ky = 0; ky < ny_; ++ky) line_[static_cast<std::size_t>(ky)] = spectrum_(kx, ky);
+    fft_.fwd(line_spectrum_.data(), line_.data(), ny_);
+  }
+
+  Index mx_, my_, nx_, ny_, half_;
+  Eigen::FFT<Scalar> fft_;
+  Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic> symbol_;    // half_ × ny_, real kernel spectrum / (nx·ny)
+  Eigen::Matrix<Complex, Eigen::Dynamic, Eigen::Dynamic> spectrum_;  // half_ × ny_ work array
+  std::vector<Complex> line_, line_spectrum_;
+  Vector real_line_;
+};
+
+}  // namespace fastnorm

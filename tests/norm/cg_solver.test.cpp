@@ -1,0 +1,141 @@
+// The FFT conjugate-gradient solver against NORM, the exact solution of the same discrete
+// problem: the same contact set and the same force on every problem both solve
+// (docs/performance.md §2). Its agreement with CONTACT is in peer_cases.test.cpp.
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <tuple>
+#include <fastnorm/cg_solver.hpp>
+#include <fastnorm/hertz.hpp>
+#include <fastnorm/norm_solver.hpp>
+
+#include "support/complementarity.hpp"
+#include "support/surfaces.hpp"
+
+using Catch::Matchers::Contains;
+
+namespace {
+
+const fastnorm::Material<> steel(2.1e11, 0.3);
+const fastnorm::Grid<> grid = fastnorm::test::two_bumps_grid();
+
+/// CG's answer against NORM's on the same h and loading.
+void require_same_as_norm(const Eigen::VectorXd& h, const fastnorm::Loading<>& loading) {
+  const auto exact = fastnorm::NormSolver<>(grid, steel).solve(h, loading);
+  const fastnorm::CgSolver<> cg(grid, steel);
+  const auto iterative = cg.solve(h, loading);
+  REQUIRE(exact.status == fastnorm::Status::converged);
+  REQUIRE(iterative.status == fastnorm::Status::converged);
+  const double peak = exact.pressure.maxCoeff();
+  INFO("force " << iterative.normal_force / exact.normal_force - 1 << ", pressure "
+                << (iterative.pressure - exact.pressure).cwiseAbs().maxCoeff() / peak << ", iterations "
+                << iterative.iterations);
+  CHECK(std::abs(iterative.normal_force / exact.normal_force - 1) < 1e-8);
+  CHECK((iterative.pressure - exact.pressure).cwiseAbs().maxCoeff() < 1e-6 * peak);
+  CHECK((iterative.in_contact == exact.in_contact).all());
+  CHECK(std::abs(iterative.approach - exact.approach) <= 1e-9 * h.cwiseAbs().maxCoeff());
+  fastnorm::test::require_complementarity(cg.influence(), h, iterative);
+}
+
+/// The complementarity error of docs/performance.md Eq. (P1), from an independent C p.
+double complementarity_error(const fastnorm::InfluenceTable<>& table, const Eigen::VectorXd& h,
+                             const fastnorm::Solution<>& solution) {
+  const Eigen::VectorXd gap = (h.array() - solution.approach).matrix() + table.displacement(solution.pressure);
+  double error = 0;
+  for (Eigen::Index k = 0; k < h.size(); ++k) {
+    error = std::max(error, solution.pressure(k) > 0 ? std::abs(gap(k)) : -gap(k));
+  }
+  return error / (solution.approach - h.minCoeff());
+}
+
+}  // namespace
+
+TEST_CASE("CG equals NORM on a two-patch contact, approach and force control", "[norm][cg]") {
+  const Eigen::VectorXd loaded = fastnorm::test::two_bumps(grid, 3e-5);
+  SECTION("approach control") { require_same_as_norm(loaded, fastnorm::Loading<>::approach()); }
+  SECTION("force control from the unloaded surfaces") {
+    require_same_as_norm(fastnorm::test::two_bumps(grid, 0.0), fastnorm::Loading<>::force(2e4));
+  }
+  SECTION("a light load that touches one bump only") {
+    require_same_as_norm(fastnorm::test::two_bumps(grid, 0.0), fastnorm::Loading<>::force(50));
+  }
+}
+
+TEST_CASE("CG equals NORM on a Hertz contact", "[norm][cg]") {
+  const auto hertz = fastnorm::hertz_from_force(0.3, 0.2, steel.combined_modulus(), 5e4);
+  const auto hertz_grid = fastnorm::hertz_grid(hertz, 31);
+  const Eigen::VectorXd h = fastnorm::hertz_undeformed_distance(hertz_grid, 0.3, 0.2);
+  const auto exact = fastnorm::NormSolver<>(hertz_grid, steel).solve(h, fastnorm::Loading<>::force(5e4));
+  const auto iterative = fastnorm::CgSolver<>(hertz_grid, steel).solve(h, fastnorm::Loading<>::force(5e4));
+  REQUIRE(iterative.status == fastnorm::Status::converged);
+  CHECK((iterative.in_contact == exact.in_contact).all());
+  CHECK(iterative.approach == Approx(exact.approach).epsilon(1e-9));
+  CHECK((iterative.pressure - exact.pressure).cwiseAbs().maxCoeff() < 1e-6 * exact.pressure.maxCoeff());
+}
+
+TEST_CASE("CG stops when the complementarity error is below its tolerance", "[norm][cg]") {
+  const Eigen::VectorXd h = fastnorm::test::two_bumps(grid, 3e-5);
+  int previous_iterations = 0;
+  for (double tolerance : {1e-3, 1e-6, 1e-9, 1e-12}) {
+    fastnorm::CgOptions<> options;
+    options.tolerance = tolerance;
+    const fastnorm::CgSolver<> cg(grid, steel, options);
+    for (const auto& loading : {fastnorm::Loading<>::approach(), fastnorm::Loading<>::force(2e4)}) {
+      const auto solution = cg.solve(h, loading);
+      REQUIRE(solution.status == fastnorm::Status::converged);
+      const double error = complementarity_error(cg.influence(), h, solution);
+      INFO("tolerance " << tolerance << ": error " << error << " after " << solution.iterations << " iterations");
+      CHECK(error <= tolerance * (1 + 1e-6));
+      if (loading.control == fastnorm::Control::approach) {
+        CHECK(solution.iterations >= previous_iterations);
+        previous_iterations = solution.iterations;
+      }
+    }
+  }
+}
+
+TEST_CASE("CG reports no contact, the iteration limit and bad input", "[norm][cg]") {
+  const fastnorm::CgSolver<> cg(grid, steel);
+  const Eigen::VectorXd apart = fastnorm::test::two_bumps(grid, -1e-4);
+  const auto none = cg.solve(apart, fastnorm::Loading<>::approach());
+  CHECK(none.status == fastnorm::Status::no_contact);
+  CHECK(none.pressure.isZero());
+  CHECK(none.contact_count() == 0);
+
+  fastnorm::CgOptions<> few;
+  few.max_iterations = 2;
+  const auto stopped = fastnorm::CgSolver<>(grid, steel, few).solve(fastnorm::test::two_bumps(grid, 3e-5),
+                                                                    fastnorm::Loading<>::approach());
+  CHECK(stopped.status == fastnorm::Status::iteration_limit);
+  CHECK(stopped.iterations == 2);
+  CHECK_THAT(stopped.message, Contains("complementarity error"));
+  CHECK(stopped.pressure.minCoeff() >= 0);
+
+  Eigen::VectorXd nan_h = apart;
+  nan_h(3) = std::nan("");
+  CHECK_THROWS_WITH(cg.solve(nan_h, fastnorm::Loading<>::approach()), Contains("undeformed_distance[3]"));
+  CHECK_THROWS_WITH(cg.solve(apart.head(4), fastnorm::Loading<>::approach()), Contains("undeformed_distance"));
+  fastnorm::CgOptions<> bad;
+  bad.tolerance = 0;
+  CHECK_THROWS_WITH(fastnorm::CgSolver<>(grid, steel, bad), Contains("tolerance"));
+  bad.tolerance = 1e-9;
+  bad.max_iterations = 0;
+  CHECK_THROWS_WITH(fastnorm::CgSolver<>(grid, steel, bad), Contains("max_iterations"));
+}
+
+TEST_CASE("CG runs in single precision", "[norm][cg]") {
+  auto hertz_problem = [](auto scalar) {
+    using Scalar = decltype(scalar);
+    const fastnorm::Material<Scalar> material(Scalar(2.1e11), Scalar(0.3));
+    const auto hertz = fastnorm::hertz_from_force(Scalar(0.3), Scalar(0.3), material.combined_modulus(), Scalar(5e4));
+    const auto hertz_grid = fastnorm::hertz_grid(hertz, 20);
+    return std::make_tuple(hertz_grid, material, fastnorm::hertz_undeformed_distance(hertz_grid, Scalar(0.3), Scalar(0.3)));
+  };
+  const auto [grid_f, steel_f, h_f] = hertz_problem(0.0f);
+  fastnorm::CgOptions<float> options;
+  options.tolerance = 1e-5f;
+  const auto single = fastnorm::CgSolver<float>(grid_f, steel_f, options).solve(h_f, fastnorm::Loading<float>::force(5e4f));
+  REQUIRE(single.status == fastnorm::Status::converged);
+  const auto [grid_d, steel_d, h_d] = hertz_problem(0.0);
+  const auto exact = fastnorm::NormSolver<>(grid_d, steel_d).solve(h_d, fastnorm::Loading<>::force(5e4));
+  CHECK(static_cast<double>(single.approach) == Approx(exact.approach).epsilon(1e-4));
+}
