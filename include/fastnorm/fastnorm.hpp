@@ -16,6 +16,7 @@
 #include "fastnorm/bases.hpp"
 #include "fastnorm/reduced_solver.hpp"
 #include "fastnorm/any_solver.hpp"
+#include "fastnorm/batch.hpp"
 #include "fastnorm/hertz.hpp"
 #include "fastnorm/case_file.hpp"
 #include "fastnorm/wheelrail.hpp"

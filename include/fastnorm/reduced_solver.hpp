@@ -24,9 +24,9 @@ namespace fastnorm {
 
 namespace detail {
 
-/// What a Galerkin set solver keeps from one set to the next, and across the problems of a
-/// sequence: the basis blocks per segment length, the last assembly of Aᵀ C_II A and its
-/// Cholesky factor, and the assembly workspace.
+/// What a Galerkin set solver keeps: the basis blocks per segment length, the assemblies of
+/// Aᵀ C_II A with their Cholesky factors for the sets of the current solve, and — across the
+/// problems of a sequence — those of the previous solve, and the assembly workspace.
 template <typename Scalar>
 struct GalerkinMemory {
   using Index = Eigen::Index;
@@ -35,17 +35,27 @@ struct GalerkinMemory {
     std::vector<Segment> segments;
     std::vector<Index> offsets;  // first unknown of each segment
     Matrix matrix;               // Aᵀ C_II A, lower triangle filled
+    // Optional: Eigen leaves an unfactorised LLT's fields uninitialised.
+    std::optional<Eigen::LLT<Matrix, Eigen::Lower>> cholesky;
   };
-  std::vector<Matrix> blocks;  // basis block per segment element count
-  Assembly previous;
-  std::optional<Eigen::LLT<Matrix, Eigen::Lower>> cholesky;  // of previous.matrix, once factorised
-  Matrix coupling, times_basis;  // workspace of the assembly
+  std::vector<Matrix> blocks;       // basis block per segment element count
+  std::vector<Assembly> path;       // the sets of this solve (only the last one unless keep_path)
+  std::vector<Assembly> last_path;  // the sets of the previous solve of a sequence
+  bool keep_path = false;
+  Matrix coupling, times_basis;     // workspace of the assembly
+
+  /// Between two problems of a sequence: this solve's sets become the ones to look up.
+  void next_problem() {
+    last_path = std::move(path);
+    path.clear();
+  }
 };
 
 /// Step 2 of the reduced method on one set: segments, basis blocks, Galerkin matrix
 /// assembled by pairs of segments from the Toeplitz table, solve, expansion. Blocks between
-/// segments that did not change since the previous set are copied, not recomputed, and an
-/// unchanged set reuses the factorisation (docs/method.md §3, docs/performance.md §3).
+/// segments that did not change since the previous set are copied, not recomputed; a set
+/// already assembled in the previous solve of a sequence reuses that assembly and its
+/// factorisation (docs/method.md §3, docs/performance.md §3).
 template <typename Basis, typename Scalar>
 class GalerkinSetSolver {
  public:
@@ -58,10 +68,15 @@ class GalerkinSetSolver {
       : influence_(influence), basis_(basis), memory_(memory) {}
 
   std::optional<Matrix> solve(const std::vector<Index>& active, const Matrix& rhs) {
-    Assembly& previous = memory_.previous;
     std::vector<Segment> segments = segment_strips(influence_.grid(), active);
-    if (!memory_.cholesky || segments != previous.segments) {
-      Assembly next;
+    auto& last_path = memory_.last_path;
+    const auto known = std::find_if(last_path.begin(), last_path.end(),
+                                    [&](const Assembly& assembly) { return assembly.segments == segments; });
+    Assembly next;
+    if (known != last_path.end()) {
+      next = std::move(*known);
+      last_path.erase(known);
+    } else {
       next.segments = std::move(segments);
       Index unknowns = 0;
       for (const Segment& segment : next.segments) {
@@ -69,41 +84,43 @@ class GalerkinSetSolver {
         unknowns += unknowns_of(segment.count);
       }
       next.matrix.resize(unknowns, unknowns);
-      assemble(next);
-      previous = std::move(next);
-      memory_.cholesky.emplace(previous.matrix);
+      // Blocks are copied from the set solved just before (or last, in the previous solve).
+      const Assembly* previous = !memory_.path.empty() ? &memory_.path.back()
+                                 : !last_path.empty()  ? &last_path.back()
+                                                       : nullptr;
+      assemble(next, previous);
+      next.cholesky.emplace(next.matrix);
     }
-    const Assembly& next = previous;
-    const Index unknowns = next.matrix.rows();
+    if (!memory_.keep_path) memory_.path.clear();
+    memory_.path.push_back(std::move(next));
+    const Assembly& assembly = memory_.path.back();
+    const Index unknowns = assembly.matrix.rows();
 
     // Right-hand sides Aᵀ rhs, segment by segment.
     Matrix reduced_rhs(unknowns, rhs.cols());
-    for (std::size_t s = 0; s < next.segments.size(); ++s) {
-      const Segment& segment = next.segments[s];
+    for (std::size_t s = 0; s < assembly.segments.size(); ++s) {
+      const Segment& segment = assembly.segments[s];
       const auto rows = rhs.middleRows(segment.set_position, segment.count);
-      auto target = reduced_rhs.middleRows(next.offsets[s], unknowns_of(segment.count));
+      auto target = reduced_rhs.middleRows(assembly.offsets[s], unknowns_of(segment.count));
       if (is_identity(segment.count)) target = rows; else target.noalias() = basis_of(segment.count).transpose() * rows;
     }
 
     Matrix coefficients;
-    if (memory_.cholesky->info() == Eigen::Success) {
-      coefficients = memory_.cholesky->solve(reduced_rhs);
+    if (assembly.cholesky->info() == Eigen::Success) {
+      coefficients = assembly.cholesky->solve(reduced_rhs);
     } else {
       // A without full column rank makes Aᵀ C A singular: take the minimum-norm solution.
-      const Matrix full = next.matrix.template selfadjointView<Eigen::Lower>();
+      const Matrix full = assembly.matrix.template selfadjointView<Eigen::Lower>();
       const Eigen::CompleteOrthogonalDecomposition<Matrix> decomposition(full);
       coefficients = decomposition.solve(reduced_rhs);
-      if (!coefficients.allFinite()) {
-        memory_.cholesky.reset();
-        return std::nullopt;
-      }
+      if (!coefficients.allFinite()) return std::nullopt;
     }
 
     // Pressures p_I = A α.
     Matrix pressure(static_cast<Index>(active.size()), rhs.cols());
-    for (std::size_t s = 0; s < next.segments.size(); ++s) {
-      const Segment& segment = next.segments[s];
-      const auto alpha = coefficients.middleRows(next.offsets[s], unknowns_of(segment.count));
+    for (std::size_t s = 0; s < assembly.segments.size(); ++s) {
+      const Segment& segment = assembly.segments[s];
+      const auto alpha = coefficients.middleRows(assembly.offsets[s], unknowns_of(segment.count));
       auto target = pressure.middleRows(segment.set_position, segment.count);
       if (is_identity(segment.count)) target = alpha; else target.noalias() = basis_of(segment.count) * alpha;
     }
@@ -125,21 +142,23 @@ class GalerkinSetSolver {
     return block;
   }
 
-  /// Position of `segment` in the previous assembly, or −1.
-  Index previous_index(const Segment& segment) const {
-    const auto& old = memory_.previous.segments;
+  /// Position of `segment` in the assembly `previous`, or −1.
+  static Index previous_index(const Assembly* previous, const Segment& segment) {
+    if (previous == nullptr) return -1;
+    const auto& old = previous->segments;
     const auto at = std::lower_bound(old.begin(), old.end(), segment, [](const Segment& a, const Segment& b) {
       return a.strip < b.strip || (a.strip == b.strip && a.first < b.first);
     });
     return at != old.end() && *at == segment ? static_cast<Index>(at - old.begin()) : -1;
   }
 
-  /// Lower triangle of Aᵀ C_II A, block (t, s) for t ≥ s = A_tᵀ C_ts A_s. Per source
-  /// segment s, the Toeplitz blocks C_ts of all targets t ≥ s that changed are stacked into
-  /// one tall matrix and multiplied by A_s in one product (docs/method.md §3).
-  void assemble(Assembly& next) {
+  /// Lower triangle of Aᵀ C_II A, block (t, s) for t ≥ s = A_tᵀ C_ts A_s. Blocks between two
+  /// segments both in `previous` are copied from it. Per source segment s, the Toeplitz
+  /// blocks C_ts of all other targets t ≥ s are stacked into one tall matrix and multiplied
+  /// by A_s in one product (docs/method.md §3).
+  void assemble(Assembly& next, const Assembly* previous) {
     std::vector<Index> old_index;
-    for (const Segment& segment : next.segments) old_index.push_back(previous_index(segment));
+    for (const Segment& segment : next.segments) old_index.push_back(previous_index(previous, segment));
     std::vector<std::size_t> targets;
     for (std::size_t s = 0; s < next.segments.size(); ++s) {
       const Segment& source = next.segments[s];
@@ -150,8 +169,8 @@ class GalerkinSetSolver {
         const Index q_t = unknowns_of(next.segments[t].count);
         if (old_index[s] >= 0 && old_index[t] >= 0) {  // both unchanged: copy
           next.matrix.block(next.offsets[t], next.offsets[s], q_t, q_s) =
-              memory_.previous.matrix.block(memory_.previous.offsets[static_cast<std::size_t>(old_index[t])],
-                                     memory_.previous.offsets[static_cast<std::size_t>(old_index[s])], q_t, q_s);
+              previous->matrix.block(previous->offsets[static_cast<std::size_t>(old_index[t])],
+                                     previous->offsets[static_cast<std::size_t>(old_index[s])], q_t, q_s);
         } else {
           targets.push_back(t);
           rows += next.segments[t].count;
@@ -227,30 +246,26 @@ class ReducedSolver {
     return detail::solve_active_set(influence_, undeformed_distance, loading, options_, set_solver);
   }
 
-  /// As solve, for the next problem of a sequence on this grid: starts from the contact set
-  /// of the previous solve_next (cold on the first call and after reset()), copies the
-  /// Galerkin blocks of segments that did not change and reuses the factorisation while the
-  /// set is unchanged (docs/performance.md §3–4).
+  /// As solve, for the next problem of a sequence on this grid. The answer of a reduced
+  /// basis depends on the path of the active set (docs/method.md §3), so this follows the
+  /// cold path, and gives solve's answer, but every set that the previous solve_next
+  /// already met (in a slowly changing sequence, most of them) reuses its assembly and
+  /// factorisation, and new sets copy the blocks of unchanged segments (docs/performance.md §4).
   Solution<Scalar> solve_next(const Eigen::Ref<const Vector>& undeformed_distance, const Loading<Scalar>& loading) {
+    memory_.keep_path = true;
+    memory_.next_problem();
     detail::GalerkinSetSolver<Basis, Scalar> set_solver(influence_, basis_, memory_);
-    Solution<Scalar> solution =
-        detail::solve_active_set(influence_, undeformed_distance, loading, options_, set_solver, last_set_);
-    last_set_ = detail::contact_set(solution);
-    return solution;
+    return detail::solve_active_set(influence_, undeformed_distance, loading, options_, set_solver);
   }
 
-  /// Forgets the previous contact set and assembly: the next solve_next starts cold.
-  void reset() {
-    last_set_.clear();
-    memory_ = Memory();
-  }
+  /// Forgets the assemblies of the previous problem.
+  void reset() { memory_ = Memory(); }
 
  private:
   using Memory = detail::GalerkinMemory<Scalar>;
   InfluenceTable<Scalar> influence_;
   Basis basis_;
   Options options_;
-  std::vector<Eigen::Index> last_set_;
   Memory memory_;
 };
 
