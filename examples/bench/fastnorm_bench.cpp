@@ -1,26 +1,44 @@
-// fastnorm-bench: times the solvers side by side, medians of several repeats, one run.
+// fastnorm-bench: times the solvers side by side in one run and prints medians and ratios
+// (docs/performance.md). Three kinds of line:
 //
-//   fastnorm-bench [--repeats 5] [--solvers norm,elliptic,...] [--sizes 30,45,60] [CASE...]
+//   fastnorm-bench [--repeats 5] [--norm-limit 6000] [--solvers EXTRA,...] [--sequence [--calls 50]] CASE...
+//     case=<name> ncontact=<n> norm_s=<t> cg_s=<t> elliptic_s=<t> polynomial4_s=<t>
+//          err_elliptic=<x> err_polynomial4=<x> speedup_elliptic_vs_cg=<x>
+//          speedup_polynomial4_vs_cg=<x> err_cg=<x> cg_as_contact_s=<t> contact_s=<t>
+//          speedup_cg_vs_contact=<x>, then for each extra solver of --solvers (e.g. polynomial-edge:4:1):
+//          <label>_s=<t> err_<label>=<x> speedup_<label>_vs_cg=<x> speedup_<label>_vs_norm=<x>
+//   with --sequence, then for each case and solver (--sequence-solvers cg,elliptic,polynomial:4):
+//     sequence=<name> solver=<s> calls=<n> per_call_s=<t> cold_per_call_s=<t> speedup_warm=<x>
+//   fastnorm-bench --growth [--sizes 30,60,120,240,480] [--repeats 3]
+//     growth=hertz_<n>x<n> elements=<N> ncontact=<n> norm_s=<t> cg_s=<t> cg_iterations=<k>
+//          elliptic_s=<t> polynomial4_s=<t> max_rss_mb=<m>
 //
-// Without CASE: the Hertz sphere of the CONTACT peer cases (R = 0.3 m, 50 kN, grid over
-// ±1.2 a) on n × n grids. With CASEs: each case in approach control on its h minus its
-// stored approach (docs/validation.md §2), as the accuracy of the reduced solvers is defined.
-// One line per problem:
-//   case=<name> ncontact=<n> norm_s=<t> <solver>_s=<t> … err_<solver>=<x> … speedup_<solver>=<x> …
-// Times are medians over the repeats; err = |Fn/Fn_norm − 1|; speedup = median over the repeats
-// of NORM's time / the solver's time, both measured in the same repeat; <solver> is the
-// solver's name with ':' and '-' replaced by '_' (polynomial:4 → polynomial_4). A solve that
-// did not converge adds status_<solver>=<status>.
+// Every case is solved in approach control on its h minus its stored approach (the loaded
+// surfaces, docs/validation.md §2), so that err = |Fn/Fn_norm − 1| measures the reduced
+// bases. Times are medians over the repeats; each repeat runs every solver once (a slow
+// spell of the machine touches all alike) and a speed-up is the median of the per-repeat
+// ratios. NORM is skipped (norm_s=-) on grids of more than --norm-limit elements; the errors
+// are then relative to CG's force, which equals NORM's to 1e-9 (docs/performance.md §2).
+// contact_s is CONTACT's own solve time stored in the case (solve_s, single thread, 1e-9);
+// cg_as_contact_s is CG's on the case as CONTACT solved it (its stored h and loading).
+// A sequence is h_s = h + s·2e-5·(y − y_mid), s = 0…calls−1 (a slowly growing tilt): the
+// warm per-call time is solve_next's, the cold one solve's on the same h_s; medians over the
+// calls after the first. One thread throughout.
 #include <fastnorm/fastnorm.hpp>
+
+#include <sys/resource.h>
 
 #include <algorithm>
 #include <chrono>
 #include <iostream>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
 
 namespace {
+
+using Clock = std::chrono::steady_clock;
 
 double median(std::vector<double> values) {
   std::sort(values.begin(), values.end());
@@ -28,107 +46,237 @@ double median(std::vector<double> values) {
   return values.size() % 2 ? values[middle] : (values[middle - 1] + values[middle]) / 2;
 }
 
-std::vector<std::string> split(const std::string& text) {
-  std::vector<std::string> items;
+std::vector<int> split_sizes(const std::string& text) {
+  std::vector<int> items;
   std::istringstream in(text);
-  for (std::string item; std::getline(in, item, ',');) items.push_back(item);
+  for (std::string item; std::getline(in, item, ',');) items.push_back(std::stoi(item));
   return items;
 }
 
-std::string label(std::string name) {
-  std::replace(name.begin(), name.end(), ':', '_');
-  std::replace(name.begin(), name.end(), '-', '_');
-  std::replace(name.begin(), name.end(), ' ', '_');
-  return name;
+double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
+
+/// "-" for a solver that did not run.
+std::string shown(const std::optional<double>& value) {
+  if (!value) return "-";
+  std::ostringstream out;
+  out.precision(4);
+  out << *value;
+  return out.str();
 }
 
 struct Problem {
   std::string name;
   fastnorm::Grid<> grid;
   fastnorm::Material<> material;
-  Eigen::VectorXd h;
-  fastnorm::Loading<> loading;
+  Eigen::VectorXd h;  // loaded: approach control
+  std::optional<double> contact_seconds;
+  std::optional<fastnorm::Case<>> stored;  // the case as CONTACT solved it
 };
 
-// Each repeat runs every solver once, NORM first, so that a slow spell of the machine
-// touches all of them alike; speed-ups are medians of the per-repeat ratios.
-void bench(const Problem& problem, const std::vector<std::string>& solver_names, int repeats) {
-  std::vector<fastnorm::AnySolver<>> solvers{fastnorm::AnySolver<>("norm", problem.grid, problem.material)};
-  for (const auto& name : solver_names) solvers.emplace_back(name, problem.grid, problem.material);
-  std::vector<fastnorm::Solution<>> solutions(solvers.size());
-  std::vector<std::vector<double>> seconds(solvers.size());
+/// Medians of each solver's cold time on one h; solvers that do not run stay empty.
+struct Timing {
+  std::vector<std::optional<double>> seconds;
+  std::vector<std::optional<fastnorm::Solution<>>> solutions;
+  std::vector<std::vector<double>> per_repeat;
+};
+
+Timing time_solvers(const Problem& problem, const std::vector<std::string>& names, const std::vector<bool>& run,
+                    int repeats) {
+  std::vector<fastnorm::AnySolver<>> solvers;
+  for (const auto& name : names) solvers.emplace_back(name, problem.grid, problem.material);
+  Timing timing{std::vector<std::optional<double>>(names.size()),
+                std::vector<std::optional<fastnorm::Solution<>>>(names.size()),
+                std::vector<std::vector<double>>(names.size())};
   for (int r = 0; r < repeats; ++r) {
     for (std::size_t s = 0; s < solvers.size(); ++s) {
-      const auto start = std::chrono::steady_clock::now();
-      solutions[s] = solvers[s].solve(problem.h, problem.loading);
-      seconds[s].push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+      if (!run[s]) continue;
+      const auto start = Clock::now();
+      timing.solutions[s] = solvers[s].solve(problem.h, fastnorm::Loading<>::approach());
+      timing.per_repeat[s].push_back(seconds_since(start));
     }
   }
-  const fastnorm::Solution<>& reference = solutions.front();
-  std::ostringstream times, errors, speedups;
-  times.precision(4);
-  errors.precision(3);
-  speedups.precision(3);
-  for (std::size_t s = 1; s < solvers.size(); ++s) {
-    const std::string key = label(solvers[s].name());
-    std::vector<double> ratios;
-    for (int r = 0; r < repeats; ++r) ratios.push_back(seconds[0][static_cast<std::size_t>(r)] / seconds[s][static_cast<std::size_t>(r)]);
-    times << ' ' << key << "_s=" << median(seconds[s]);
-    errors << " err_" << key << '=' << std::abs(solutions[s].normal_force / reference.normal_force - 1);
-    if (solutions[s].status != fastnorm::Status::converged) {
-      errors << " status_" << key << "=" << label(fastnorm::to_string(solutions[s].status));
-    }
-    speedups << " speedup_" << key << '=' << median(ratios);
+  for (std::size_t s = 0; s < solvers.size(); ++s) {
+    if (run[s]) timing.seconds[s] = median(timing.per_repeat[s]);
   }
+  return timing;
+}
+
+double median_ratio(const std::vector<double>& numerator, const std::vector<double>& denominator) {
+  std::vector<double> ratios;
+  for (std::size_t r = 0; r < numerator.size(); ++r) ratios.push_back(numerator[r] / denominator[r]);
+  return median(ratios);
+}
+
+/// A solver name as a key: polynomial-edge:4:1 → polynomial_edge_4_1.
+std::string label(std::string name) {
+  std::replace(name.begin(), name.end(), ':', '_');
+  std::replace(name.begin(), name.end(), '-', '_');
+  return name;
+}
+
+// Solver order in the case line: norm, cg, elliptic, polynomial:4, then the extras.
+void bench_case(const Problem& problem, int repeats, Eigen::Index norm_limit, const std::vector<std::string>& extras) {
+  std::vector<std::string> names{"norm", "cg", "elliptic", "polynomial:4"};
+  names.insert(names.end(), extras.begin(), extras.end());
+  const bool norm_runs = problem.grid.size() <= norm_limit;
+  std::vector<bool> run(names.size(), true);
+  run[0] = norm_runs;
+  const Timing t = time_solvers(problem, names, run, repeats);
+  const auto& reference = norm_runs ? *t.solutions[0] : *t.solutions[1];
+  auto error = [&](std::size_t s) { return std::abs(t.solutions[s]->normal_force / reference.normal_force - 1); };
   std::cout.precision(4);
-  std::cout << "case=" << problem.name << " ncontact=" << reference.contact_count() << " norm_s=" << median(seconds[0])
-            << times.str() << errors.str() << speedups.str() << std::endl;
+  std::cout << "case=" << problem.name << " ncontact=" << reference.contact_count() << " norm_s=" << shown(t.seconds[0])
+            << " cg_s=" << shown(t.seconds[1]) << " elliptic_s=" << shown(t.seconds[2])
+            << " polynomial4_s=" << shown(t.seconds[3]) << " err_elliptic=" << error(2)
+            << " err_polynomial4=" << error(3)
+            << " speedup_elliptic_vs_cg=" << median_ratio(t.per_repeat[1], t.per_repeat[2])
+            << " speedup_polynomial4_vs_cg=" << median_ratio(t.per_repeat[1], t.per_repeat[3])
+            << " err_cg=" << (norm_runs ? shown(error(1)) : std::string("-"));
+  for (std::size_t s = 4; s < names.size(); ++s) {
+    std::cout << ' ' << label(names[s]) << "_s=" << shown(t.seconds[s]) << " err_" << label(names[s]) << '='
+              << error(s) << " speedup_" << label(names[s]) << "_vs_cg=" << median_ratio(t.per_repeat[1], t.per_repeat[s]);
+    if (norm_runs) std::cout << " speedup_" << label(names[s]) << "_vs_norm=" << median_ratio(t.per_repeat[0], t.per_repeat[s]);
+  }
+  if (problem.stored && problem.contact_seconds) {
+    // CG in the control CONTACT used (force), beside CONTACT's time.
+    const fastnorm::CgSolver<> cg(problem.grid, problem.material);
+    std::vector<double> seconds;
+    for (int r = 0; r < repeats; ++r) {
+      const auto start = Clock::now();
+      cg.solve(problem.stored->undeformed_distance, problem.stored->loading);
+      seconds.push_back(seconds_since(start));
+    }
+    std::cout << " cg_as_contact_s=" << median(seconds) << " contact_s=" << *problem.contact_seconds
+              << " speedup_cg_vs_contact=" << *problem.contact_seconds / median(seconds);
+  }
+  for (std::size_t s = 0; s < names.size(); ++s) {
+    if (t.solutions[s] && t.solutions[s]->status != fastnorm::Status::converged) {
+      std::cout << " status_" << (s == 3 ? std::string("polynomial4") : names[s]) << '='
+                << fastnorm::to_string(t.solutions[s]->status);
+    }
+  }
+  std::cout << std::endl;
+}
+
+void bench_sequence(const Problem& problem, const std::vector<std::string>& names, int calls) {
+  double y_min = problem.grid.y(0), y_max = problem.grid.y(problem.grid.my() - 1);
+  std::vector<Eigen::VectorXd> sequence;
+  for (int s = 0; s < calls; ++s) {
+    Eigen::VectorXd h = problem.h;
+    for (Eigen::Index k = 0; k < h.size(); ++k) h(k) += s * 2e-5 * (problem.grid.y_of(k) - (y_min + y_max) / 2);
+    sequence.push_back(h);
+  }
+  for (const auto& name : names) {
+    fastnorm::AnySolver<> solver(name, problem.grid, problem.material);
+    std::vector<double> warm, cold;
+    for (int s = 0; s < calls; ++s) {
+      auto start = Clock::now();
+      solver.solve_next(sequence[static_cast<std::size_t>(s)], fastnorm::Loading<>::approach());
+      const double warm_seconds = seconds_since(start);
+      start = Clock::now();
+      solver.solve(sequence[static_cast<std::size_t>(s)], fastnorm::Loading<>::approach());
+      const double cold_seconds = seconds_since(start);
+      if (s > 0 || calls == 1) {
+        warm.push_back(warm_seconds);
+        cold.push_back(cold_seconds);
+      }
+    }
+    std::cout.precision(4);
+    std::cout << "sequence=" << problem.name << " solver=" << solver.name() << " calls=" << calls
+              << " per_call_s=" << median(warm) << " cold_per_call_s=" << median(cold)
+              << " speedup_warm=" << median(cold) / median(warm) << std::endl;
+  }
+}
+
+double max_rss_mb() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return static_cast<double>(usage.ru_maxrss) / 1024.0;  // kB on Linux
+}
+
+// Grids of n × n on the Hertz sphere of the peer cases (R = 0.3 m, 50 kN, ±1.2 a), smallest
+// first, so that max_rss_mb, which only grows, is set by the grid of its line.
+void bench_growth(const std::vector<int>& sizes, int repeats, Eigen::Index norm_limit) {
+  const fastnorm::Material<> steel(2.1e11, 0.3);
+  const auto hertz = fastnorm::hertz_from_force(0.3, 0.3, steel.combined_modulus(), 5e4);
+  const Eigen::Index reduced_limit = 240 * 240;  // the reduced assembly grows as (strips · length)²
+  for (int size : sizes) {
+    const auto grid = fastnorm::hertz_grid(hertz, size);
+    const Problem problem{"hertz_" + std::to_string(size), grid, steel,
+                          fastnorm::hertz_undeformed_distance(grid, 0.3, 0.3).array() - hertz.approach,
+                          std::nullopt, std::nullopt};
+    const bool reduced_runs = grid.size() <= reduced_limit;
+    const Timing t = time_solvers(problem, {"norm", "cg", "elliptic", "polynomial:4"},
+                                  {grid.size() <= norm_limit, true, reduced_runs, reduced_runs}, repeats);
+    std::cout.precision(4);
+    std::cout << "growth=hertz_" << size << 'x' << size << " elements=" << grid.size()
+              << " ncontact=" << t.solutions[1]->contact_count() << " norm_s=" << shown(t.seconds[0])
+              << " cg_s=" << shown(t.seconds[1]) << " cg_iterations=" << t.solutions[1]->iterations
+              << " elliptic_s=" << shown(t.seconds[2]) << " polynomial4_s=" << shown(t.seconds[3])
+              << " max_rss_mb=" << max_rss_mb() << std::endl;
+  }
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::vector<int> sizes{30, 45, 60};
-  std::vector<std::string> solvers{"elliptic", "polynomial:4", "elliptic-edge", "polynomial-edge"};
+  std::vector<int> sizes{30, 60, 120, 240, 480};
   std::vector<std::string> cases;
-  int repeats = 5;
+  int repeats = 5, calls = 50;
+  Eigen::Index norm_limit = 6000;
+  bool growth = false, sequence = false;
+  std::vector<std::string> sequence_solvers{"cg", "elliptic", "polynomial:4"}, extra_solvers;
   try {
     for (int n = 1; n < argc; ++n) {
       const std::string word = argv[n];
       const bool has_value = n + 1 < argc;
       if (word == "--sizes" && has_value) {
-        sizes.clear();
-        for (const auto& item : split(argv[++n])) sizes.push_back(std::stoi(item));
+        sizes = split_sizes(argv[++n]);
       } else if (word == "--repeats" && has_value) {
         repeats = std::max(1, std::stoi(argv[++n]));
+      } else if (word == "--calls" && has_value) {
+        calls = std::max(1, std::stoi(argv[++n]));
+      } else if (word == "--norm-limit" && has_value) {
+        norm_limit = std::stol(argv[++n]);
+      } else if (word == "--sequence-solvers" && has_value) {
+        std::istringstream in(argv[++n]);
+        sequence_solvers.clear();
+        for (std::string item; std::getline(in, item, ',');) sequence_solvers.push_back(item);
       } else if (word == "--solvers" && has_value) {
-        solvers = split(argv[++n]);
+        std::istringstream in(argv[++n]);
+        for (std::string item; std::getline(in, item, ',');) {
+          if (item != "norm" && item != "cg" && item != "elliptic" && item != "polynomial:4" && item != "polynomial") {
+            extra_solvers.push_back(item);
+          }
+        }
+      } else if (word == "--growth") {
+        growth = true;
+      } else if (word == "--sequence") {
+        sequence = true;
       } else if (!word.empty() && word[0] == '-') {
         throw std::invalid_argument("unknown option or missing value: " + word);
       } else {
         cases.push_back(word);
       }
     }
-    if (cases.empty()) {
-      const fastnorm::Material<> steel(2.1e11, 0.3);
-      const auto hertz = fastnorm::hertz_from_force(0.3, 0.3, steel.combined_modulus(), 5e4);
-      for (int size : sizes) {
-        const auto grid = fastnorm::hertz_grid(hertz, size);
-        bench({"hertz_sphere_" + std::to_string(size) + "x" + std::to_string(size), grid, steel,
-               fastnorm::hertz_undeformed_distance(grid, 0.3, 0.3), fastnorm::Loading<>::force(5e4)},
-              solvers, repeats);
-      }
-    }
+    if (growth || cases.empty()) bench_growth(sizes, repeats, norm_limit);
+    std::vector<Problem> problems;
     for (const auto& path : cases) {
-      const auto problem = fastnorm::read_case_file(path);
-      const double stored_approach = problem.result ? problem.result->approach : 0.0;
-      bench({problem.name, problem.grid, problem.material,
-             problem.undeformed_distance.array() - stored_approach, fastnorm::Loading<>::approach()},
-            solvers, repeats);
+      const auto stored = fastnorm::read_case_file(path);
+      const double stored_approach = stored.result ? stored.result->approach : 0.0;
+      problems.push_back({stored.name, stored.grid, stored.material,
+                          stored.undeformed_distance.array() - stored_approach,
+                          stored.result ? std::optional<double>(stored.result->solve_seconds) : std::nullopt,
+                          stored});
+      bench_case(problems.back(), repeats, norm_limit, extra_solvers);
+    }
+    if (sequence) {
+      for (const auto& problem : problems) bench_sequence(problem, sequence_solvers, calls);
     }
   } catch (const std::exception& error) {
     std::cerr << "fastnorm-bench: " << error.what()
-              << "\nusage: fastnorm-bench [--repeats 5] [--solvers a,b] [--sizes 30,45,60] [CASE...]\n";
+              << "\nusage: fastnorm-bench [--repeats 5] [--norm-limit 6000] [--solvers EXTRA,...] [--sequence [--calls 50]] CASE...\n"
+                 "       fastnorm-bench --growth [--sizes 30,60,120,240,480] [--repeats 5]\n";
     return 2;
   }
   return 0;

@@ -3,7 +3,7 @@
 //   fastnorm-solve CASE [--solver NAME] [--control approach|force] [--compare]
 //                  [--write-case OUT] [--quiet]
 //
-// NAME: norm (default) | elliptic | polynomial[:G] | elliptic-edge[:K] | polynomial-edge[:G[:K]].
+// NAME: norm (default) | cg | elliptic | polynomial[:G] | elliptic-edge[:K] | polynomial-edge[:G[:K]].
 // Prints one line `fn=<N> approach=<m> ncontact=<n> iterations=<k> solve_s=<s>`, followed on
 // the same line, when the case carries a result, by `ref_fn=<N> rel_fn_diff=<x>
 // max_abs_dp_over_pmax=<x> contact_mismatch=<n>`, and with --compare by
@@ -23,7 +23,7 @@ namespace {
 
 const char* const usage =
     "usage: fastnorm-solve CASE [--solver NAME] [--control approach|force] [--compare] [--write-case OUT] [--quiet]\n"
-    "       NAME: norm | elliptic | polynomial[:G] | elliptic-edge[:K] | polynomial-edge[:G[:K]]\n";
+    "       NAME: norm | cg | elliptic | polynomial[:G] | elliptic-edge[:K] | polynomial-edge[:G[:K]]\n";
 
 struct Arguments {
   std::string case_path;

@@ -32,7 +32,7 @@ namespace {
 const char* const usage =
     "usage: fastnorm-wheelrail [--y MM] [--yaw DEG] [--load N | --fz N --wheel left|right] [--roll RAD]\n"
     "                          [--elements N] [--solver NAME] [--compare] [--write-case PREFIX] [--svg PREFIX]\n"
-    "       NAME: norm | elliptic | polynomial[:G] | elliptic-edge[:K] | polynomial-edge[:G[:K]]\n";
+    "       NAME: norm | cg | elliptic | polynomial[:G] | elliptic-edge[:K] | polynomial-edge[:G[:K]]\n";
 
 struct Arguments {
   double y_mm = 0, yaw_deg = 0, load = 2e5, fz = 0, roll = 0;

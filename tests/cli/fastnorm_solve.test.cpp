@@ -95,6 +95,19 @@ TEST_CASE("fastnorm-solve runs a reduced solver and compares it with full NORM",
   fs::remove_all(dir);
 }
 
+TEST_CASE("fastnorm-solve runs the CG solver with the contact set and force of NORM", "[cli][cg]") {
+  const fs::path dir = scratch();
+  const fs::path input = write_sphere_case(dir);
+  const auto outcome = run_solver(input.string() + " --solver cg --compare");
+  INFO(outcome.output);
+  REQUIRE(outcome.status == 0);
+  CHECK_THAT(outcome.output, Contains("solver cg"));
+  CHECK(field(outcome.output, "approach") > 0);
+  CHECK(field(outcome.output, "contact_mismatch_vs_norm") == 0);
+  CHECK(field(outcome.output, "max_dp_over_pmax_vs_norm") < 1e-6);
+  fs::remove_all(dir);
+}
+
 TEST_CASE("fastnorm-solve rejects bad input with status 2 and writes nothing", "[cli]") {
   const fs::path dir = scratch();
   const fs::path good = write_sphere_case(dir), bad = dir / "bad.case", out = dir / "out.case";
