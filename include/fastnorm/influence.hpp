@@ -159,14 +159,17 @@ class InfluenceTable {
     return result;
   }
 
+  /// C(di, dj) for di = first_di … first_di + length − 1 (|di| < mx): a forward slice of
+  /// one table column, no copy.
+  auto run(Index first_di, Index dj, Index length) const {
+    return table_.col(std::abs(dj)).segment(grid_.mx() - 1 + first_di, length);
+  }
+
   /// The Toeplitz block C(row_offset + m − n, dj) for m < block.rows(), n < block.cols():
   /// the coupling of two runs of strips dj apart whose first elements are row_offset
-  /// apart in x. Each of its columns is a forward slice of one table column.
+  /// apart in x. Each of its columns is a run of one table column.
   void fill_toeplitz(Index row_offset, Index dj, Eigen::Ref<Matrix> block) const {
-    const auto column = table_.col(std::abs(dj));
-    for (Index n = 0; n < block.cols(); ++n) {
-      block.col(n) = column.segment(grid_.mx() - 1 + row_offset - n, block.rows());
-    }
+    for (Index n = 0; n < block.cols(); ++n) block.col(n) = run(row_offset - n, dj, block.rows());
   }
 
   /// displacement += pressure · C(·, source): adds the displacement (m) of every element due

@@ -9,6 +9,7 @@
 #include <Eigen/Core>
 #include <Eigen/QR>
 #include <algorithm>
+#include <memory>
 #include <optional>
 #include <vector>
 
@@ -17,10 +18,25 @@
 #include "fastnorm/grid.hpp"
 #include "fastnorm/influence.hpp"
 #include "fastnorm/material.hpp"
+#include "fastnorm/segment_correlation.hpp"
 #include "fastnorm/solution.hpp"
 #include "fastnorm/strips.hpp"
 
 namespace fastnorm {
+
+/// Settings of a reduced solver: the active-set loop's, and the memory its tables of
+/// segment correlations may take (docs/method.md §3).
+template <typename Scalar = double>
+struct ReducedOptions : ActiveSetOptions<Scalar> {
+  ReducedOptions() = default;
+  /// The loop's settings with the default budget (what AnySolver passes on).
+  ReducedOptions(const ActiveSetOptions<Scalar>& loop) : ActiveSetOptions<Scalar>(loop) {}  // NOLINT: implicit on purpose
+  /// Most memory (bytes) for the correlation tables, shared by copies of the solver. The
+  /// tables of one pair of segment lengths take 8·q²·(n_t + n_s) bytes (double); pairs past
+  /// the budget are assembled by the direct Toeplitz product, which is slower but the same
+  /// matrix. 0 turns the tables off.
+  std::size_t correlation_budget_bytes = std::size_t(64) << 20;
+};
 
 namespace detail {
 
@@ -42,7 +58,8 @@ struct GalerkinMemory {
   std::vector<Assembly> path;       // the sets of this solve (only the last one unless keep_path)
   std::vector<Assembly> last_path;  // the sets of the previous solve of a sequence
   bool keep_path = false;
-  Matrix coupling, times_basis;     // workspace of the assembly
+  Matrix coupling, times_basis;     // workspace of the direct assembly
+  Eigen::Matrix<Scalar, Eigen::Dynamic, 1> block_entries;  // workspace of the correlation assembly
 
   /// Between two problems of a sequence: this solve's sets become the ones to look up.
   void next_problem() {
@@ -64,8 +81,9 @@ class GalerkinSetSolver {
   using Memory = GalerkinMemory<Scalar>;
   using Assembly = typename Memory::Assembly;
 
-  GalerkinSetSolver(const InfluenceTable<Scalar>& influence, const Basis& basis, Memory& memory)
-      : influence_(influence), basis_(basis), memory_(memory) {}
+  GalerkinSetSolver(const InfluenceTable<Scalar>& influence, const Basis& basis,
+                    SegmentCorrelations<Scalar>& correlations, Memory& memory)
+      : influence_(influence), basis_(basis), correlations_(correlations), memory_(memory) {}
 
   std::optional<Matrix> solve(const std::vector<Index>& active, const Matrix& rhs) {
     std::vector<Segment> segments = segment_strips(influence_.grid(), active);
@@ -152,35 +170,49 @@ class GalerkinSetSolver {
     return at != old.end() && *at == segment ? static_cast<Index>(at - old.begin()) : -1;
   }
 
+  /// The block used for a segment of `count` elements: the basis, or the identity.
+  Matrix block_of(Index count) {
+    return is_identity(count) ? Matrix(Matrix::Identity(count, count)) : basis_of(count);
+  }
+
   /// Lower triangle of Aᵀ C_II A, block (t, s) for t ≥ s = A_tᵀ C_ts A_s. Blocks between two
-  /// segments both in `previous` are copied from it. Per source segment s, the Toeplitz
-  /// blocks C_ts of all other targets t ≥ s are stacked into one tall matrix and multiplied
-  /// by A_s in one product (docs/method.md §3).
+  /// segments both in `previous` are copied from it; the others are one product of a run
+  /// of the table with the correlation table of the two segment lengths (Eq. (M2)). Pairs
+  /// without a table (past the memory budget) take the direct product: per source segment
+  /// s, the Toeplitz blocks C_ts of those targets stacked into one tall matrix times A_s.
   void assemble(Assembly& next, const Assembly* previous) {
     std::vector<Index> old_index;
     for (const Segment& segment : next.segments) old_index.push_back(previous_index(previous, segment));
-    std::vector<std::size_t> targets;
+    auto block_of_count = [this](Index count) { return block_of(count); };
+    std::vector<std::size_t> direct;
     for (std::size_t s = 0; s < next.segments.size(); ++s) {
       const Segment& source = next.segments[s];
       const Index q_s = unknowns_of(source.count);
-      targets.clear();
+      direct.clear();
       Index rows = 0;
       for (std::size_t t = s; t < next.segments.size(); ++t) {
-        const Index q_t = unknowns_of(next.segments[t].count);
+        const Segment& target = next.segments[t];
+        const Index q_t = unknowns_of(target.count);
+        auto block = next.matrix.block(next.offsets[t], next.offsets[s], q_t, q_s);
         if (old_index[s] >= 0 && old_index[t] >= 0) {  // both unchanged: copy
-          next.matrix.block(next.offsets[t], next.offsets[s], q_t, q_s) =
-              previous->matrix.block(previous->offsets[static_cast<std::size_t>(old_index[t])],
-                                     previous->offsets[static_cast<std::size_t>(old_index[s])], q_t, q_s);
+          block = previous->matrix.block(previous->offsets[static_cast<std::size_t>(old_index[t])],
+                                         previous->offsets[static_cast<std::size_t>(old_index[s])], q_t, q_s);
+        } else if (const Matrix* correlation = correlations_.find(target.count, source.count, block_of_count)) {
+          // Σ_d c(Δ + d, dj) K(d), d = −(n_s − 1) … n_t − 1: K's column a + q_t·b is entry (a, b).
+          memory_.block_entries.noalias() =
+              correlation->transpose() * influence_.run(target.first - source.first - (source.count - 1),
+                                                        target.strip - source.strip, target.count + source.count - 1);
+          block = Eigen::Map<const Matrix>(memory_.block_entries.data(), q_t, q_s);
         } else {
-          targets.push_back(t);
-          rows += next.segments[t].count;
+          direct.push_back(t);
+          rows += target.count;
         }
       }
-      if (targets.empty()) continue;
-      // C_ts(m, n) = C(|i_t + m − i_s − n|, |j_t − j_s|): one column of the table each.
+      if (direct.empty()) continue;
+      // C_ts(m, n) = C(i_t + m − i_s − n, j_t − j_s): one run of the table each column.
       memory_.coupling.resize(rows, source.count);
       Index row = 0;
-      for (std::size_t t : targets) {
+      for (std::size_t t : direct) {
         const Segment& target = next.segments[t];
         influence_.fill_toeplitz(target.first - source.first, target.strip - source.strip,
                                  memory_.coupling.middleRows(row, target.count));
@@ -190,7 +222,7 @@ class GalerkinSetSolver {
       if (!source_identity) memory_.times_basis.noalias() = memory_.coupling * basis_of(source.count);
       const Matrix& half = source_identity ? memory_.coupling : memory_.times_basis;
       row = 0;
-      for (std::size_t t : targets) {
+      for (std::size_t t : direct) {
         const Segment& target = next.segments[t];
         auto block = next.matrix.block(next.offsets[t], next.offsets[s], unknowns_of(target.count), q_s);
         if (is_identity(target.count)) {
@@ -205,6 +237,7 @@ class GalerkinSetSolver {
 
   const InfluenceTable<Scalar>& influence_;
   const Basis& basis_;
+  SegmentCorrelations<Scalar>& correlations_;
   Memory& memory_;
 };
 
@@ -223,12 +256,16 @@ template <typename Basis, typename Scalar = double>
 class ReducedSolver {
  public:
   using Vector = Eigen::Matrix<Scalar, Eigen::Dynamic, 1>;
-  using Options = ActiveSetOptions<Scalar>;
+  using Options = ReducedOptions<Scalar>;
 
   /// @throws fastnorm::invalid_argument for invalid options
   ReducedSolver(const Grid<Scalar>& grid, const Material<Scalar>& material, Basis basis = Basis(),
                 Options options = {})
-      : influence_(grid, material), basis_(basis), options_(options) {
+      : influence_(grid, material),
+        basis_(basis),
+        options_(options),
+        correlations_(std::make_shared<detail::SegmentCorrelations<Scalar>>(grid.mx(),
+                                                                            options.correlation_budget_bytes)) {
     options_.validate();
   }
 
@@ -242,7 +279,7 @@ class ReducedSolver {
   Solution<Scalar> solve(const Eigen::Ref<const Vector>& undeformed_distance,
                          const Loading<Scalar>& loading) const {
     Memory memory;
-    detail::GalerkinSetSolver<Basis, Scalar> set_solver(influence_, basis_, memory);
+    detail::GalerkinSetSolver<Basis, Scalar> set_solver(influence_, basis_, *correlations_, memory);
     return detail::solve_active_set(influence_, undeformed_distance, loading, options_, set_solver);
   }
 
@@ -254,18 +291,24 @@ class ReducedSolver {
   Solution<Scalar> solve_next(const Eigen::Ref<const Vector>& undeformed_distance, const Loading<Scalar>& loading) {
     memory_.keep_path = true;
     memory_.next_problem();
-    detail::GalerkinSetSolver<Basis, Scalar> set_solver(influence_, basis_, memory_);
+    detail::GalerkinSetSolver<Basis, Scalar> set_solver(influence_, basis_, *correlations_, memory_);
     return detail::solve_active_set(influence_, undeformed_distance, loading, options_, set_solver);
   }
 
-  /// Forgets the assemblies of the previous problem.
+  /// Forgets the assemblies of the previous problem (not the correlation tables: they do
+  /// not depend on h).
   void reset() { memory_ = Memory(); }
+
+  /// Memory the correlation tables take now (bytes); shared with copies of this solver.
+  std::size_t correlation_bytes() const { return correlations_->used_bytes(); }
 
  private:
   using Memory = detail::GalerkinMemory<Scalar>;
   InfluenceTable<Scalar> influence_;
   Basis basis_;
   Options options_;
+  // Built on first use; h-independent, so copies share them (thread-safe).
+  std::shared_ptr<detail::SegmentCorrelations<Scalar>> correlations_;
   Memory memory_;
 };
 
