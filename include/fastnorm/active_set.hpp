@@ -8,7 +8,6 @@
 #include <cmath>
 #include <limits>
 #include <optional>
-#include <set>
 #include <string>
 #include <vector>
 
@@ -96,10 +95,40 @@ std::vector<Eigen::Index> contact_set(const Solution<Scalar>& solution) {
   return set;
 }
 
+/// Everything the active-set loop touches between iterations. Kept by a solver across the
+/// problems of a sequence, it stops allocating once it has grown to the largest set met:
+/// the loop itself allocates nothing then (docs/performance.md §3).
+template <typename Scalar>
+struct ActiveSetWorkspace {
+  using Index = Eigen::Index;
+  std::vector<Index> active, kept, candidates, joining, admissible_set;
+  std::vector<Index> visited_elements;   // every set of this solve, one after the other
+  std::vector<std::size_t> visited_ends;  // where each ends in visited_elements
+  std::vector<Scalar> columns;            // right-hand sides in, pressures out (n × 1 or n × 2)
+  std::vector<Scalar> admissible_pressure, displacement;
+  std::vector<char> is_active;            // per element of the grid
+
+  /// True if `set` came up before in this solve; records it otherwise.
+  bool seen_before(const std::vector<Index>& set) {
+    std::size_t begin = 0;
+    for (const std::size_t end : visited_ends) {
+      if (end - begin == set.size() &&
+          std::equal(set.begin(), set.end(), visited_elements.begin() + static_cast<std::ptrdiff_t>(begin))) {
+        return true;
+      }
+      begin = end;
+    }
+    visited_elements.insert(visited_elements.end(), set.begin(), set.end());
+    visited_ends.push_back(visited_elements.size());
+    return false;
+  }
+};
+
 /// The active-set loop of docs/norm.md §1 around a solver of the problem restricted to a
-/// set. `set_solver.solve(active, rhs)` receives the sorted element numbers of the set and
-/// right-hand sides over it (n × 1: −h_I; n × 2 in force control: −h0_I and 1) and returns
-/// the pressures on the set for each column, or nothing if its factorisation failed.
+/// set. `set_solver.solve(active, columns)` receives the sorted element numbers of the set
+/// and, in `columns`, right-hand sides over it (n × 1: −h_I; n × 2 in force control: −h0_I
+/// and 1), which it overwrites with the pressures on the set for each column; it returns
+/// false if its factorisation failed.
 ///
 /// `start_set` (sorted element numbers) replaces the starting set of step 1 when not empty:
 /// a warm start from the previous contact set of a sequence of problems.
@@ -111,7 +140,8 @@ template <typename Scalar, typename SetSolver>
 Solution<Scalar> solve_active_set(const InfluenceTable<Scalar>& influence,
                                   const Eigen::Ref<const Eigen::Matrix<Scalar, Eigen::Dynamic, 1>>& h,
                                   const Loading<Scalar>& loading, const ActiveSetOptions<Scalar>& options,
-                                  SetSolver& set_solver, const std::vector<Eigen::Index>& start_set = {}) {
+                                  SetSolver& set_solver, ActiveSetWorkspace<Scalar>& work,
+                                  const std::vector<Eigen::Index>& start_set = {}) {
   using Index = Eigen::Index;
   using Vector = Eigen::Matrix<Scalar, Eigen::Dynamic, 1>;
   using Matrix = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;
@@ -139,18 +169,19 @@ Solution<Scalar> solve_active_set(const InfluenceTable<Scalar>& influence,
     return solution;
   }
   const Scalar start_below = approach + options.start_depth_fraction * (deepest - approach);
-  std::vector<Index> active = start_set;
+  std::vector<Index>& active = work.active;
+  active = start_set;
   if (active.empty()) {
     for (Index k = 0; k < n_all; ++k) {
       if (h(k) <= start_below) active.push_back(k);
     }
   }
 
-  auto store = [&](const std::vector<Index>& set, const Vector& pressure, Scalar delta) {
+  auto store = [&](const std::vector<Index>& set, const Scalar* pressure, Scalar delta) {
     solution.pressure.setZero();
     solution.in_contact.setConstant(false);
     for (std::size_t r = 0; r < set.size(); ++r) {
-      const Scalar value = std::max(pressure(static_cast<Index>(r)), Scalar(0));
+      const Scalar value = std::max(pressure[r], Scalar(0));
       solution.pressure(set[r]) = value;
       solution.in_contact(set[r]) = value > 0;
     }
@@ -158,17 +189,16 @@ Solution<Scalar> solve_active_set(const InfluenceTable<Scalar>& influence,
     solution.normal_force = area * solution.pressure.sum();
   };
 
-  std::set<std::vector<Index>> visited;
-  std::vector<Index> admissible_set;  // last set with all pressures positive
-  Vector admissible_pressure;
+  work.visited_elements.clear();
+  work.visited_ends.clear();
+  work.admissible_set.clear();  // last set with all pressures positive
   Scalar admissible_approach = 0;
-  std::vector<bool> is_active(static_cast<std::size_t>(n_all), false);
-  Vector pressure;  // the last solve's pressures, on `solved_set`
-  std::vector<Index> solved_set;
+  work.is_active.assign(static_cast<std::size_t>(n_all), 0);
+  const Index column_count = force_control ? 2 : 1;
   while (solution.iterations < options.max_iterations) {
-    if (!visited.insert(active).second) {
-      FASTNORM_ASSERT(!admissible_set.empty());
-      store(admissible_set, admissible_pressure, admissible_approach);
+    if (work.seen_before(active)) {
+      FASTNORM_ASSERT(!work.admissible_set.empty());
+      store(work.admissible_set, work.admissible_pressure.data(), admissible_approach);
       solution.status = Status::cycled;
       solution.message = "active set cycled; returned the last set with positive pressures";
       return solution;
@@ -176,63 +206,65 @@ Solution<Scalar> solve_active_set(const InfluenceTable<Scalar>& influence,
     ++solution.iterations;
     // Step 2: solve on the current set.
     const Index n = static_cast<Index>(active.size());
-    Matrix rhs(n, force_control ? 2 : 1);
-    for (Index r = 0; r < n; ++r) rhs(r, 0) = -h(active[static_cast<std::size_t>(r)]);
-    if (force_control) rhs.col(1).setOnes();
-    const std::optional<Matrix> parts = set_solver.solve(active, rhs);
-    solved_set = active;
-    if (!parts) {
+    work.columns.resize(static_cast<std::size_t>(n * column_count));
+    Eigen::Map<Matrix> columns(work.columns.data(), n, column_count);
+    for (Index r = 0; r < n; ++r) columns(r, 0) = -h(active[static_cast<std::size_t>(r)]);
+    if (force_control) columns.col(1).setOnes();
+    if (!set_solver.solve(active, columns)) {
       solution.status = Status::numerical_issue;
       solution.message = "factorisation of the system on the active set failed";
       return solution;
     }
+    auto pressure = columns.col(0);
     if (force_control) {
       // p = p_a + δ p_b with δ from dx·dy·Σp = Fn (docs/design.md §3).
-      approach = (loading.normal_force / area - parts->col(0).sum()) / parts->col(1).sum();
-      pressure = parts->col(0) + approach * parts->col(1);
-    } else {
-      pressure = parts->col(0);
+      approach = (loading.normal_force / area - columns.col(0).sum()) / columns.col(1).sum();
+      pressure += approach * columns.col(1);
     }
 
     // Step 3: elements with non-positive pressure leave.
-    std::vector<Index> kept;
+    work.kept.clear();
     for (Index r = 0; r < n; ++r) {
-      if (pressure(r) > 0) kept.push_back(active[static_cast<std::size_t>(r)]);
+      if (pressure(r) > 0) work.kept.push_back(active[static_cast<std::size_t>(r)]);
     }
-    if (static_cast<Index>(kept.size()) < n) {
-      active.swap(kept);
+    if (static_cast<Index>(work.kept.size()) < n) {
+      if (solution.iterations == options.max_iterations) break;  // report this iterate
+      active.swap(work.kept);
       continue;
     }
-    admissible_set = active;
-    admissible_pressure = pressure;
+    work.admissible_set = active;
+    work.admissible_pressure.assign(pressure.data(), pressure.data() + n);
     admissible_approach = approach;
 
     // Step 4: elements with negative deformed gap join. C p ≥ 0, so only elements with
     // h − δ < 0 can have g < 0: only those are checked.
-    for (Index k : active) is_active[static_cast<std::size_t>(k)] = true;
-    std::vector<Index> candidates;
+    for (Index k : active) work.is_active[static_cast<std::size_t>(k)] = 1;
+    work.candidates.clear();
     for (Index k = 0; k < n_all; ++k) {
-      if (!is_active[static_cast<std::size_t>(k)] && h(k) - approach < join_below) candidates.push_back(k);
+      if (!work.is_active[static_cast<std::size_t>(k)] && h(k) - approach < join_below) work.candidates.push_back(k);
     }
-    for (Index k : active) is_active[static_cast<std::size_t>(k)] = false;
-    const Vector displacement = influence.displacement(candidates, active, pressure);
-    std::vector<Index> joining;
-    for (std::size_t t = 0; t < candidates.size(); ++t) {
-      if (h(candidates[t]) - approach + displacement(static_cast<Index>(t)) < join_below) {
-        joining.push_back(candidates[t]);
+    for (Index k : active) work.is_active[static_cast<std::size_t>(k)] = 0;
+    work.displacement.resize(work.candidates.size());
+    Eigen::Map<Vector> displacement(work.displacement.data(), static_cast<Index>(work.candidates.size()));
+    influence.displacement(work.candidates, active, pressure, displacement);
+    work.joining.clear();
+    for (std::size_t t = 0; t < work.candidates.size(); ++t) {
+      if (h(work.candidates[t]) - approach + displacement(static_cast<Index>(t)) < join_below) {
+        work.joining.push_back(work.candidates[t]);
       }
     }
-    if (joining.empty()) {
-      store(active, pressure, approach);
+    if (work.joining.empty()) {
+      store(active, pressure.data(), approach);
       solution.status = Status::converged;
       solution.message = "contact set stable";
       return solution;
     }
-    active.insert(active.end(), joining.begin(), joining.end());
-    std::sort(active.begin(), active.end());
+    if (solution.iterations == options.max_iterations) break;  // report this iterate
+    active.insert(active.end(), work.joining.begin(), work.joining.end());
+    std::inplace_merge(active.begin(), active.end() - static_cast<std::ptrdiff_t>(work.joining.size()), active.end());
   }
   // The last iterate, its negative pressures clipped, so the caller can inspect it.
-  store(solved_set, pressure, approach);
+  store(active, work.columns.data(), approach);
   solution.status = Status::iteration_limit;
   solution.message = "active set still changing after " + std::to_string(solution.iterations) +
                      " iterations";

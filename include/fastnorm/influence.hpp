@@ -108,12 +108,27 @@ class InfluenceTable {
   /// The stored table: table()(mx − 1 + di, dj) = C(di·dx, dj·dy), |di| < mx, 0 ≤ dj < my.
   const Matrix& table() const { return table_; }
 
+  /// C(di, dj) for di = first_di … first_di + length − 1 (|di| < mx): a forward slice of
+  /// one table column, no copy.
+  auto run(Index first_di, Index dj, Index length) const {
+    return table_.col(std::abs(dj)).segment(grid_.mx() - 1 + first_di, length);
+  }
+
   /// Dense symmetric block C_II for the elements `set` (each < grid.size()).
   Matrix dense_block(const std::vector<Index>& set) const { return dense_block(set, set); }
 
   /// Dense block C_RS: rows the elements `rows`, columns the elements `columns`.
   Matrix dense_block(const std::vector<Index>& rows, const std::vector<Index>& columns) const {
     Matrix block(static_cast<Index>(rows.size()), static_cast<Index>(columns.size()));
+    dense_block(rows, columns, block);
+    return block;
+  }
+
+  /// As dense_block, into `block` (rows.size() × columns.size()) without allocating.
+  void dense_block(const std::vector<Index>& rows, const std::vector<Index>& columns,
+                   Eigen::Ref<Matrix> block) const {
+    FASTNORM_CHECK(block.rows() == static_cast<Index>(rows.size()) && block.cols() == static_cast<Index>(columns.size()),
+                   "dense_block: block must be rows.size() x columns.size()");
     for (Index c = 0; c < block.cols(); ++c) {
       const Index ic = grid_.i_of(columns[static_cast<std::size_t>(c)]);
       const Index jc = grid_.j_of(columns[static_cast<std::size_t>(c)]);
@@ -122,7 +137,6 @@ class InfluenceTable {
         block(r, c) = at_offset(grid_.i_of(k) - ic, grid_.j_of(k) - jc);
       }
     }
-    return block;
   }
 
   /// Displacements u_t = Σ_s C_ts p_s (m) at the elements `targets` due to pressures
@@ -130,39 +144,42 @@ class InfluenceTable {
   /// when the sources come in runs of consecutive elements of a strip (a sorted set).
   Vector displacement(const std::vector<Index>& targets, const std::vector<Index>& sources,
                       const Eigen::Ref<const Vector>& source_pressure) const {
+    Vector result(static_cast<Index>(targets.size()));
+    displacement(targets, sources, source_pressure, result);
+    return result;
+  }
+
+  /// As displacement, into `result` (targets.size() values) without allocating.
+  void displacement(const std::vector<Index>& targets, const std::vector<Index>& sources,
+                    const Eigen::Ref<const Vector>& source_pressure, Eigen::Ref<Vector> result) const {
     FASTNORM_CHECK(source_pressure.size() == static_cast<Index>(sources.size()),
                    "displacement: source_pressure must have one value per source element");
-    const Index n_targets = static_cast<Index>(targets.size());
-    Eigen::Matrix<Index, Eigen::Dynamic, 1> target_i(n_targets), target_j(n_targets);
-    for (Index t = 0; t < n_targets; ++t) {
-      target_i(t) = grid_.i_of(targets[static_cast<std::size_t>(t)]);
-      target_j(t) = grid_.j_of(targets[static_cast<std::size_t>(t)]);
-    }
-    Vector result = Vector::Zero(n_targets);
+    FASTNORM_CHECK(result.size() == static_cast<Index>(targets.size()),
+                   "displacement: result must have one value per target element");
+    const Index mx = grid_.mx();
+    result.setZero();
     for (std::size_t start = 0; start < sources.size();) {
       // A run: sources start..start+length−1 are consecutive elements of strip j.
       std::size_t length = 1;
       const Index i0 = grid_.i_of(sources[start]), j = grid_.j_of(sources[start]);
       while (start + length < sources.size() && sources[start + length] == sources[start] + static_cast<Index>(length) &&
-             i0 + static_cast<Index>(length) < grid_.mx()) {
+             i0 + static_cast<Index>(length) < mx) {
         ++length;
       }
       const auto run_pressure = source_pressure.segment(static_cast<Index>(start), static_cast<Index>(length));
-      for (Index t = 0; t < n_targets; ++t) {
+      // The target's strip is found by a division only when it changes (targets usually sorted).
+      Index strip_first = 0, target_j = 0;
+      for (Index t = 0; t < result.size(); ++t) {
+        const Index k = targets[static_cast<std::size_t>(t)];
+        if (k < strip_first || k >= strip_first + mx) {
+          target_j = k / mx;
+          strip_first = target_j * mx;
+        }
         // Σ_n C(i_t − i0 − n, dj) p_n = Σ_n C(i0 + n − i_t, dj) p_n (even in x): forwards.
-        result(t) += table_.col(std::abs(target_j(t) - j))
-                         .segment(grid_.mx() - 1 + i0 - target_i(t), static_cast<Index>(length))
-                         .dot(run_pressure);
+        result(t) += run(i0 - (k - strip_first), target_j - j, static_cast<Index>(length)).dot(run_pressure);
       }
       start += length;
     }
-    return result;
-  }
-
-  /// C(di, dj) for di = first_di … first_di + length − 1 (|di| < mx): a forward slice of
-  /// one table column, no copy.
-  auto run(Index first_di, Index dj, Index length) const {
-    return table_.col(std::abs(dj)).segment(grid_.mx() - 1 + first_di, length);
   }
 
   /// The Toeplitz block C(row_offset + m − n, dj) for m < block.rows(), n < block.cols():

@@ -4,13 +4,12 @@
 /// force control, with a dense Cholesky factorisation of the active block. This is the
 /// reference path every faster solver is tested against (docs/design.md §3, docs/norm.md).
 
-#include <Eigen/Cholesky>
 #include <Eigen/Core>
-#include <optional>
 #include <vector>
 
 #include "fastnorm/active_set.hpp"
 #include "fastnorm/grid.hpp"
+#include "fastnorm/in_place_cholesky.hpp"
 #include "fastnorm/influence.hpp"
 #include "fastnorm/material.hpp"
 #include "fastnorm/solution.hpp"
@@ -56,8 +55,9 @@ class NormSolver {
   Solution<Scalar> solve(const Eigen::Ref<const Vector>& undeformed_distance,
                          const Loading<Scalar>& loading) const {
     Factorisation factorisation;
+    detail::ActiveSetWorkspace<Scalar> workspace;
     DenseSetSolver set_solver{influence_, factorisation};
-    return detail::solve_active_set(influence_, undeformed_distance, loading, options_, set_solver);
+    return detail::solve_active_set(influence_, undeformed_distance, loading, options_, set_solver, workspace);
   }
 
   /// As solve, for the next problem of a sequence on this grid: starts from the contact set
@@ -65,8 +65,8 @@ class NormSolver {
   /// factorisation while the set is unchanged. The answer is solve's (docs/performance.md §4).
   Solution<Scalar> solve_next(const Eigen::Ref<const Vector>& undeformed_distance, const Loading<Scalar>& loading) {
     DenseSetSolver set_solver{influence_, memory_};
-    Solution<Scalar> solution =
-        detail::solve_active_set(influence_, undeformed_distance, loading, options_, set_solver, last_set_);
+    Solution<Scalar> solution = detail::solve_active_set(influence_, undeformed_distance, loading, options_,
+                                                         set_solver, workspace_, last_set_);
     last_set_ = detail::contact_set(solution);
     return solution;
   }
@@ -74,31 +74,33 @@ class NormSolver {
   /// Forgets the previous contact set and factorisation: the next solve_next starts cold.
   void reset() {
     last_set_.clear();
-    memory_ = Factorisation();
+    memory_.set.clear();
+    memory_.valid = false;
   }
 
  private:
-  /// The Cholesky factor of C_II for the set I last solved (empty before the first solve;
-  /// optional also because Eigen leaves an unfactorised LLT's fields uninitialised).
+  /// The Cholesky factor of C_II for the set I last solved (valid after a solve).
   struct Factorisation {
     std::vector<Index> set;
-    std::optional<Eigen::LLT<Matrix>> cholesky;
+    bool valid = false;
+    detail::InPlaceCholesky<Scalar> cholesky;
   };
 
-  /// Step 2 of NORM: C_II p = rhs with Eigen's Cholesky of the dense block.
+  /// Step 2 of NORM: C_II p = rhs with Eigen's Cholesky of the dense block, in storage
+  /// reused from one set to the next.
   struct DenseSetSolver {
     const InfluenceTable<Scalar>& influence;
     Factorisation& factorisation;
-    std::optional<Matrix> solve(const std::vector<Index>& active, const Matrix& rhs) {
-      if (!factorisation.cholesky || active != factorisation.set) {
+    bool solve(const std::vector<Index>& active, Eigen::Ref<Matrix> columns) {
+      if (!factorisation.valid || active != factorisation.set) {
         factorisation.set = active;
-        factorisation.cholesky.emplace(influence.dense_block(active));
+        factorisation.cholesky.resize(static_cast<Index>(active.size()));
+        influence.dense_block(active, active, factorisation.cholesky.matrix());
+        factorisation.valid = factorisation.cholesky.factorise();
+        if (!factorisation.valid) return false;
       }
-      if (factorisation.cholesky->info() != Eigen::Success) {
-        factorisation.cholesky.reset();
-        return std::nullopt;
-      }
-      return Matrix(factorisation.cholesky->solve(rhs));
+      factorisation.cholesky.solve_in_place(columns);
+      return true;
     }
   };
 
@@ -106,6 +108,7 @@ class NormSolver {
   Options options_;
   std::vector<Index> last_set_;
   Factorisation memory_;
+  detail::ActiveSetWorkspace<Scalar> workspace_;
 };
 
 }  // namespace fastnorm

@@ -5,19 +5,19 @@
 /// replaced by the Galerkin system (Aᵀ C_II A) α = Aᵀ rhs, p_I = A α, where A holds a small
 /// basis per segment of each strip.
 
-#include <Eigen/Cholesky>
 #include <Eigen/Core>
 #include <Eigen/QR>
 #include <algorithm>
 #include <memory>
-#include <optional>
 #include <vector>
 
 #include "fastnorm/active_set.hpp"
 #include "fastnorm/bases.hpp"
 #include "fastnorm/grid.hpp"
+#include "fastnorm/in_place_cholesky.hpp"
 #include "fastnorm/influence.hpp"
 #include "fastnorm/material.hpp"
+#include "fastnorm/scratch_matrix.hpp"
 #include "fastnorm/segment_correlation.hpp"
 #include "fastnorm/solution.hpp"
 #include "fastnorm/strips.hpp"
@@ -42,29 +42,46 @@ namespace detail {
 
 /// What a Galerkin set solver keeps: the basis blocks per segment length, the assemblies of
 /// Aᵀ C_II A with their Cholesky factors for the sets of the current solve, and — across the
-/// problems of a sequence — those of the previous solve, and the assembly workspace.
+/// problems of a sequence — those of the previous solve, and the workspace of one set. All
+/// of it keeps its storage (assemblies no longer needed wait in `spare`), so the loop stops
+/// allocating once it has met its largest set (docs/performance.md §3).
 template <typename Scalar>
 struct GalerkinMemory {
   using Index = Eigen::Index;
   using Matrix = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;
   struct Assembly {
     std::vector<Segment> segments;
-    std::vector<Index> offsets;  // first unknown of each segment
-    Matrix matrix;               // Aᵀ C_II A, lower triangle filled
-    // Optional: Eigen leaves an unfactorised LLT's fields uninitialised.
-    std::optional<Eigen::LLT<Matrix, Eigen::Lower>> cholesky;
+    std::vector<Index> offsets;      // first unknown of each segment
+    ScratchMatrix<Scalar> matrix;    // Aᵀ C_II A, lower triangle filled
+    InPlaceCholesky<Scalar> cholesky;
+    Index unknowns() const { return matrix.rows(); }
   };
   std::vector<Matrix> blocks;       // basis block per segment element count
   std::vector<Assembly> path;       // the sets of this solve (only the last one unless keep_path)
   std::vector<Assembly> last_path;  // the sets of the previous solve of a sequence
+  std::vector<Assembly> spare;      // storage to reuse
   bool keep_path = false;
-  Matrix coupling, times_basis;     // workspace of the direct assembly
-  Eigen::Matrix<Scalar, Eigen::Dynamic, 1> block_entries;  // workspace of the correlation assembly
+  // Workspace of one set.
+  std::vector<Segment> segments;
+  std::vector<Index> old_index;
+  std::vector<std::size_t> direct;
+  ScratchMatrix<Scalar> coupling, times_basis, block_entries, reduced_rhs;
 
+  /// An assembly to fill, from the spare ones when there is one.
+  Assembly take_spare() {
+    if (spare.empty()) return Assembly();
+    Assembly assembly = std::move(spare.back());
+    spare.pop_back();
+    return assembly;
+  }
+  void recycle(std::vector<Assembly>& assemblies) {
+    for (Assembly& assembly : assemblies) spare.push_back(std::move(assembly));
+    assemblies.clear();
+  }
   /// Between two problems of a sequence: this solve's sets become the ones to look up.
   void next_problem() {
-    last_path = std::move(path);
-    path.clear();
+    recycle(last_path);
+    std::swap(last_path, path);
   }
 };
 
@@ -85,17 +102,21 @@ class GalerkinSetSolver {
                     SegmentCorrelations<Scalar>& correlations, Memory& memory)
       : influence_(influence), basis_(basis), correlations_(correlations), memory_(memory) {}
 
-  std::optional<Matrix> solve(const std::vector<Index>& active, const Matrix& rhs) {
-    std::vector<Segment> segments = segment_strips(influence_.grid(), active);
+  /// The set solver of solve_active_set: right-hand sides over `active` in, pressures out.
+  bool solve(const std::vector<Index>& active, Eigen::Ref<Matrix> columns) {
+    segment_strips(influence_.grid(), active, memory_.segments);
     auto& last_path = memory_.last_path;
-    const auto known = std::find_if(last_path.begin(), last_path.end(),
-                                    [&](const Assembly& assembly) { return assembly.segments == segments; });
+    const auto known = std::find_if(last_path.begin(), last_path.end(), [&](const Assembly& assembly) {
+      return assembly.segments == memory_.segments;
+    });
     Assembly next;
     if (known != last_path.end()) {
       next = std::move(*known);
       last_path.erase(known);
     } else {
-      next.segments = std::move(segments);
+      next = memory_.take_spare();
+      std::swap(next.segments, memory_.segments);
+      next.offsets.clear();
       Index unknowns = 0;
       for (const Segment& segment : next.segments) {
         next.offsets.push_back(unknowns);
@@ -107,42 +128,42 @@ class GalerkinSetSolver {
                                  : !last_path.empty()  ? &last_path.back()
                                                        : nullptr;
       assemble(next, previous);
-      next.cholesky.emplace(next.matrix);
+      next.cholesky.resize(unknowns);
+      next.cholesky.matrix().template triangularView<Eigen::Lower>() = next.matrix.view();
+      next.cholesky.factorise();
     }
-    if (!memory_.keep_path) memory_.path.clear();
+    if (!memory_.keep_path) memory_.recycle(memory_.path);
     memory_.path.push_back(std::move(next));
     const Assembly& assembly = memory_.path.back();
-    const Index unknowns = assembly.matrix.rows();
 
-    // Right-hand sides Aᵀ rhs, segment by segment.
-    Matrix reduced_rhs(unknowns, rhs.cols());
+    // Right-hand sides Aᵀ rhs, segment by segment; solved in place into the coefficients α.
+    auto coefficients = memory_.reduced_rhs.resize(assembly.unknowns(), columns.cols());
     for (std::size_t s = 0; s < assembly.segments.size(); ++s) {
       const Segment& segment = assembly.segments[s];
-      const auto rows = rhs.middleRows(segment.set_position, segment.count);
-      auto target = reduced_rhs.middleRows(assembly.offsets[s], unknowns_of(segment.count));
+      const auto rows = columns.middleRows(segment.set_position, segment.count);
+      auto target = coefficients.middleRows(assembly.offsets[s], unknowns_of(segment.count));
       if (is_identity(segment.count)) target = rows; else target.noalias() = basis_of(segment.count).transpose() * rows;
     }
-
-    Matrix coefficients;
-    if (assembly.cholesky->info() == Eigen::Success) {
-      coefficients = assembly.cholesky->solve(reduced_rhs);
+    if (assembly.cholesky.factored()) {
+      assembly.cholesky.solve_in_place(coefficients);
     } else {
-      // A without full column rank makes Aᵀ C A singular: take the minimum-norm solution.
-      const Matrix full = assembly.matrix.template selfadjointView<Eigen::Lower>();
+      // A without full column rank makes Aᵀ C A singular: take the minimum-norm solution
+      // (rare; this path allocates).
+      const Matrix full = assembly.matrix.view().template selfadjointView<Eigen::Lower>();
       const Eigen::CompleteOrthogonalDecomposition<Matrix> decomposition(full);
-      coefficients = decomposition.solve(reduced_rhs);
-      if (!coefficients.allFinite()) return std::nullopt;
+      const Matrix minimum_norm = decomposition.solve(Matrix(coefficients));
+      if (!minimum_norm.allFinite()) return false;
+      coefficients = minimum_norm;
     }
 
     // Pressures p_I = A α.
-    Matrix pressure(static_cast<Index>(active.size()), rhs.cols());
     for (std::size_t s = 0; s < assembly.segments.size(); ++s) {
       const Segment& segment = assembly.segments[s];
       const auto alpha = coefficients.middleRows(assembly.offsets[s], unknowns_of(segment.count));
-      auto target = pressure.middleRows(segment.set_position, segment.count);
+      auto target = columns.middleRows(segment.set_position, segment.count);
       if (is_identity(segment.count)) target = alpha; else target.noalias() = basis_of(segment.count) * alpha;
     }
-    return pressure;
+    return true;
   }
 
  private:
@@ -181,10 +202,12 @@ class GalerkinSetSolver {
   /// without a table (past the memory budget) take the direct product: per source segment
   /// s, the Toeplitz blocks C_ts of those targets stacked into one tall matrix times A_s.
   void assemble(Assembly& next, const Assembly* previous) {
-    std::vector<Index> old_index;
+    auto matrix = next.matrix.view();
+    auto& old_index = memory_.old_index;
+    old_index.clear();
     for (const Segment& segment : next.segments) old_index.push_back(previous_index(previous, segment));
     auto block_of_count = [this](Index count) { return block_of(count); };
-    std::vector<std::size_t> direct;
+    auto& direct = memory_.direct;
     for (std::size_t s = 0; s < next.segments.size(); ++s) {
       const Segment& source = next.segments[s];
       const Index q_s = unknowns_of(source.count);
@@ -193,16 +216,17 @@ class GalerkinSetSolver {
       for (std::size_t t = s; t < next.segments.size(); ++t) {
         const Segment& target = next.segments[t];
         const Index q_t = unknowns_of(target.count);
-        auto block = next.matrix.block(next.offsets[t], next.offsets[s], q_t, q_s);
+        auto block = matrix.block(next.offsets[t], next.offsets[s], q_t, q_s);
         if (old_index[s] >= 0 && old_index[t] >= 0) {  // both unchanged: copy
-          block = previous->matrix.block(previous->offsets[static_cast<std::size_t>(old_index[t])],
-                                         previous->offsets[static_cast<std::size_t>(old_index[s])], q_t, q_s);
+          block = previous->matrix.view().block(previous->offsets[static_cast<std::size_t>(old_index[t])],
+                                                previous->offsets[static_cast<std::size_t>(old_index[s])], q_t, q_s);
         } else if (const Matrix* correlation = correlations_.find(target.count, source.count, block_of_count)) {
           // Σ_d c(Δ + d, dj) K(d), d = −(n_s − 1) … n_t − 1: K's column a + q_t·b is entry (a, b).
-          memory_.block_entries.noalias() =
+          auto entries = memory_.block_entries.resize(q_t * q_s, 1);
+          entries.noalias() =
               correlation->transpose() * influence_.run(target.first - source.first - (source.count - 1),
                                                         target.strip - source.strip, target.count + source.count - 1);
-          block = Eigen::Map<const Matrix>(memory_.block_entries.data(), q_t, q_s);
+          block = Eigen::Map<const Matrix>(entries.data(), q_t, q_s);
         } else {
           direct.push_back(t);
           rows += target.count;
@@ -210,21 +234,22 @@ class GalerkinSetSolver {
       }
       if (direct.empty()) continue;
       // C_ts(m, n) = C(i_t + m − i_s − n, j_t − j_s): one run of the table each column.
-      memory_.coupling.resize(rows, source.count);
+      auto coupling = memory_.coupling.resize(rows, source.count);
       Index row = 0;
       for (std::size_t t : direct) {
         const Segment& target = next.segments[t];
         influence_.fill_toeplitz(target.first - source.first, target.strip - source.strip,
-                                 memory_.coupling.middleRows(row, target.count));
+                                 coupling.middleRows(row, target.count));
         row += target.count;
       }
       const bool source_identity = is_identity(source.count);
-      if (!source_identity) memory_.times_basis.noalias() = memory_.coupling * basis_of(source.count);
-      const Matrix& half = source_identity ? memory_.coupling : memory_.times_basis;
+      auto times_basis = memory_.times_basis.resize(rows, q_s);
+      if (!source_identity) times_basis.noalias() = coupling * basis_of(source.count);
+      const auto half = source_identity ? coupling : times_basis;
       row = 0;
       for (std::size_t t : direct) {
         const Segment& target = next.segments[t];
-        auto block = next.matrix.block(next.offsets[t], next.offsets[s], unknowns_of(target.count), q_s);
+        auto block = matrix.block(next.offsets[t], next.offsets[s], unknowns_of(target.count), q_s);
         if (is_identity(target.count)) {
           block = half.middleRows(row, target.count);
         } else {
@@ -279,8 +304,9 @@ class ReducedSolver {
   Solution<Scalar> solve(const Eigen::Ref<const Vector>& undeformed_distance,
                          const Loading<Scalar>& loading) const {
     Memory memory;
+    detail::ActiveSetWorkspace<Scalar> workspace;
     detail::GalerkinSetSolver<Basis, Scalar> set_solver(influence_, basis_, *correlations_, memory);
-    return detail::solve_active_set(influence_, undeformed_distance, loading, options_, set_solver);
+    return detail::solve_active_set(influence_, undeformed_distance, loading, options_, set_solver, workspace);
   }
 
   /// As solve, for the next problem of a sequence on this grid. The answer of a reduced
@@ -292,12 +318,15 @@ class ReducedSolver {
     memory_.keep_path = true;
     memory_.next_problem();
     detail::GalerkinSetSolver<Basis, Scalar> set_solver(influence_, basis_, *correlations_, memory_);
-    return detail::solve_active_set(influence_, undeformed_distance, loading, options_, set_solver);
+    return detail::solve_active_set(influence_, undeformed_distance, loading, options_, set_solver, workspace_);
   }
 
   /// Forgets the assemblies of the previous problem (not the correlation tables: they do
   /// not depend on h).
-  void reset() { memory_ = Memory(); }
+  void reset() {
+    memory_.recycle(memory_.path);
+    memory_.recycle(memory_.last_path);
+  }
 
   /// Memory the correlation tables take now (bytes); shared with copies of this solver.
   std::size_t correlation_bytes() const { return correlations_->used_bytes(); }
@@ -310,6 +339,7 @@ class ReducedSolver {
   // Built on first use; h-independent, so copies share them (thread-safe).
   std::shared_ptr<detail::SegmentCorrelations<Scalar>> correlations_;
   Memory memory_;
+  detail::ActiveSetWorkspace<Scalar> workspace_;
 };
 
 }  // namespace fastnorm

@@ -46,12 +46,13 @@ Eigen::Matrix<Scalar, Eigen::Dynamic, 1> segment_coordinates(Eigen::Index count)
   return xi;
 }
 
-/// The segments of a contact set, in the order of the set.
+/// The segments of a contact set, in the order of the set, into `segments` (cleared first;
+/// its storage is reused).
 /// @param set element numbers k = i + mx·j, sorted ascending, each < grid.size()
 /// @throws fastnorm::invalid_argument if `set` is not sorted or out of range
 template <typename Scalar>
-std::vector<Segment> segment_strips(const Grid<Scalar>& grid, const std::vector<Eigen::Index>& set) {
-  std::vector<Segment> segments;
+void segment_strips(const Grid<Scalar>& grid, const std::vector<Eigen::Index>& set, std::vector<Segment>& segments) {
+  segments.clear();
   for (std::size_t position = 0; position < set.size(); ++position) {
     const Eigen::Index k = set[position];
     FASTNORM_CHECK(k >= 0 && k < grid.size(), detail::describe("segment_strips: element out of the grid", k));
@@ -63,6 +64,13 @@ std::vector<Segment> segment_strips(const Grid<Scalar>& grid, const std::vector<
       segments.push_back(Segment{j, i, 1, static_cast<Eigen::Index>(position)});
     }
   }
+}
+
+/// The segments of a contact set, in the order of the set (see above).
+template <typename Scalar>
+std::vector<Segment> segment_strips(const Grid<Scalar>& grid, const std::vector<Eigen::Index>& set) {
+  std::vector<Segment> segments;
+  segment_strips(grid, set, segments);
   return segments;
 }
 

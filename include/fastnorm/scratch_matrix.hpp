@@ -1,0 +1,39 @@
+#pragma once
+/// @file scratch_matrix.hpp
+/// Workspace matrices that keep their storage: an Eigen matrix gives its memory back
+/// whenever its size changes, and the systems of the active-set loop change size every
+/// iteration; this storage only grows, so a loop that reuses it stops allocating once it
+/// has met its largest system (docs/performance.md §3).
+
+#include <Eigen/Core>
+#include <vector>
+
+namespace fastnorm {
+namespace detail {
+
+template <typename Scalar>
+class ScratchMatrix {
+ public:
+  using Index = Eigen::Index;
+  using Matrix = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;
+
+  /// A rows × cols view of the storage, grown if needed; contents undefined.
+  Eigen::Map<Matrix> resize(Index rows, Index cols) {
+    rows_ = rows;
+    cols_ = cols;
+    if (values_.size() < static_cast<std::size_t>(rows * cols)) values_.resize(static_cast<std::size_t>(rows * cols));
+    return view();
+  }
+  /// The view of the last resize.
+  Eigen::Map<Matrix> view() { return Eigen::Map<Matrix>(values_.data(), rows_, cols_); }
+  Eigen::Map<const Matrix> view() const { return Eigen::Map<const Matrix>(values_.data(), rows_, cols_); }
+  Index rows() const { return rows_; }
+  Index cols() const { return cols_; }
+
+ private:
+  Index rows_ = 0, cols_ = 0;
+  std::vector<Scalar> values_;
+};
+
+}  // namespace detail
+}  // namespace fastnorm
