@@ -63,11 +63,11 @@ void check_undeformed_distance(const Grid<Scalar>& grid,
 
 /// First guess of the approach δ in force control, used only to pick the starting set.
 /// Hertz-like estimate: the overlap {h0 < δ} of area A gives F ≈ (4/3) E* a (δ − min h0)
-/// with πa² ≈ A/2 (docs/norm.md Eq. (N3)). Returns δ.
+/// with πa² ≈ A/2 (docs/norm.md Eq. (N3)). Returns δ; `sorted` is workspace.
 template <typename Scalar>
-Scalar approach_guess(const Eigen::Matrix<Scalar, Eigen::Dynamic, 1>& h0, Scalar element_area,
-                      Scalar combined_modulus, Scalar normal_force) {
-  std::vector<Scalar> sorted(h0.data(), h0.data() + h0.size());
+Scalar approach_guess(const Eigen::Ref<const Eigen::Matrix<Scalar, Eigen::Dynamic, 1>>& h0, Scalar element_area,
+                      Scalar combined_modulus, Scalar normal_force, std::vector<Scalar>& sorted) {
+  sorted.assign(h0.data(), h0.data() + h0.size());
   std::sort(sorted.begin(), sorted.end());
   const Scalar pi = Scalar(3.14159265358979323846L);
   // Force per unit of (δ − min h0) when `overlap_count` elements overlap.
@@ -83,16 +83,23 @@ Scalar approach_guess(const Eigen::Matrix<Scalar, Eigen::Dynamic, 1>& h0, Scalar
   return sorted.front() + normal_force / stiffness(sorted.size());
 }
 
-/// The sorted element numbers in contact: the warm start of the next problem of a sequence
-/// (empty, i.e. a cold start, unless the solution is usable).
+/// As above, with its own workspace.
 template <typename Scalar>
-std::vector<Eigen::Index> contact_set(const Solution<Scalar>& solution) {
-  std::vector<Eigen::Index> set;
-  if (!solution.ok()) return set;
+Scalar approach_guess(const Eigen::Ref<const Eigen::Matrix<Scalar, Eigen::Dynamic, 1>>& h0, Scalar element_area,
+                      Scalar combined_modulus, Scalar normal_force) {
+  std::vector<Scalar> sorted;
+  return approach_guess(h0, element_area, combined_modulus, normal_force, sorted);
+}
+
+/// The sorted element numbers in contact, into `set`: the warm start of the next problem of
+/// a sequence (empty, i.e. a cold start, unless the solution is usable).
+template <typename Scalar>
+void contact_set(const Solution<Scalar>& solution, std::vector<Eigen::Index>& set) {
+  set.clear();
+  if (!solution.ok()) return;
   for (Eigen::Index k = 0; k < solution.in_contact.size(); ++k) {
     if (solution.in_contact(k)) set.push_back(k);
   }
-  return set;
 }
 
 /// Everything the active-set loop touches between iterations. Kept by a solver across the
@@ -106,6 +113,7 @@ struct ActiveSetWorkspace {
   std::vector<std::size_t> visited_ends;  // where each ends in visited_elements
   std::vector<Scalar> columns;            // right-hand sides in, pressures out (n × 1 or n × 2)
   std::vector<Scalar> admissible_pressure, displacement;
+  std::vector<Scalar> sorted_distance;    // of the force-control starting guess
   std::vector<char> is_active;            // per element of the grid
 
   /// True if `set` came up before in this solve; records it otherwise.
@@ -128,7 +136,9 @@ struct ActiveSetWorkspace {
 /// set. `set_solver.solve(active, columns)` receives the sorted element numbers of the set
 /// and, in `columns`, right-hand sides over it (n × 1: −h_I; n × 2 in force control: −h0_I
 /// and 1), which it overwrites with the pressures on the set for each column; it returns
-/// false if its factorisation failed.
+/// false if its factorisation failed. `set_solver.displacement(targets, active, p, u)` then
+/// writes u = C_TI p for pressures p on that set (the join check of step 4; a solver may
+/// use what it knows of p, e.g. that it lies in its basis).
 ///
 /// `start_set` (sorted element numbers) replaces the starting set of step 1 when not empty:
 /// a warm start from the previous contact set of a sequence of problems.
@@ -162,7 +172,7 @@ Solution<Scalar> solve_active_set(const InfluenceTable<Scalar>& influence,
   const Scalar deepest = h.minCoeff();
   Scalar approach = 0;
   if (force_control) {
-    approach = approach_guess(Vector(h), area, influence.combined_modulus(), loading.normal_force);
+    approach = approach_guess(h, area, influence.combined_modulus(), loading.normal_force, work.sorted_distance);
   } else if (deepest >= 0) {
     solution.status = Status::no_contact;
     solution.message = "no element has a negative undeformed distance";
@@ -246,7 +256,7 @@ Solution<Scalar> solve_active_set(const InfluenceTable<Scalar>& influence,
     for (Index k : active) work.is_active[static_cast<std::size_t>(k)] = 0;
     work.displacement.resize(work.candidates.size());
     Eigen::Map<Vector> displacement(work.displacement.data(), static_cast<Index>(work.candidates.size()));
-    influence.displacement(work.candidates, active, pressure, displacement);
+    set_solver.displacement(work.candidates, active, pressure, displacement);
     work.joining.clear();
     for (std::size_t t = 0; t < work.candidates.size(); ++t) {
       if (h(work.candidates[t]) - approach + displacement(static_cast<Index>(t)) < join_below) {

@@ -135,7 +135,7 @@ class CgSolver {
 
     // Start: the previous pressures, or uniform pressure on the Hertz-like overlap.
     if (!(warm && work.has_start && p.size() == n && p.sum() > 0)) {
-      const Scalar approach = force_control ? detail::approach_guess(Vector(h), area, influence_.combined_modulus(),
+      const Scalar approach = force_control ? detail::approach_guess<Scalar>(h, area, influence_.combined_modulus(),
                                                                      loading.normal_force)
                                             : Scalar(0);
       p = (h.array() < approach).template cast<Scalar>().matrix();

@@ -40,11 +40,16 @@ class InPlaceCholesky {
   bool factored() const { return factored_; }
 
   /// rhs ← A⁻¹ rhs by the two triangular solves with L (after a successful factorise).
+  /// Column by column: Eigen's solve of a block of columns packs the factor into a
+  /// temporary that comes from the heap once it passes 128 KB; a single column does not.
   template <typename Rhs>
   void solve_in_place(Rhs&& rhs) const {
     const auto factor = storage_.view().template triangularView<Eigen::Lower>();
-    factor.solveInPlace(rhs);
-    factor.adjoint().solveInPlace(rhs);
+    for (Index c = 0; c < rhs.cols(); ++c) {
+      auto column = rhs.col(c);
+      factor.solveInPlace(column);
+      factor.adjoint().solveInPlace(column);
+    }
   }
 
  private:

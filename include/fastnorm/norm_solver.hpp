@@ -5,6 +5,7 @@
 /// reference path every faster solver is tested against (docs/design.md §3, docs/norm.md).
 
 #include <Eigen/Core>
+#include <memory>
 #include <vector>
 
 #include "fastnorm/active_set.hpp"
@@ -13,6 +14,7 @@
 #include "fastnorm/influence.hpp"
 #include "fastnorm/material.hpp"
 #include "fastnorm/solution.hpp"
+#include "fastnorm/workspace_pool.hpp"
 
 namespace fastnorm {
 
@@ -54,10 +56,11 @@ class NormSolver {
   /// @throws fastnorm::invalid_argument for wrong sizes or non-finite h
   Solution<Scalar> solve(const Eigen::Ref<const Vector>& undeformed_distance,
                          const Loading<Scalar>& loading) const {
-    Factorisation factorisation;
-    detail::ActiveSetWorkspace<Scalar> workspace;
-    DenseSetSolver set_solver{influence_, factorisation};
-    return detail::solve_active_set(influence_, undeformed_distance, loading, options_, set_solver, workspace);
+    auto workspace = cold_workspaces_->take();  // its storage, not its factorisation
+    workspace->factorisation.valid = false;
+    DenseSetSolver set_solver{influence_, workspace->factorisation};
+    return detail::solve_active_set(influence_, undeformed_distance, loading, options_, set_solver,
+                                    workspace->loop);
   }
 
   /// As solve, for the next problem of a sequence on this grid: starts from the contact set
@@ -67,7 +70,7 @@ class NormSolver {
     DenseSetSolver set_solver{influence_, memory_};
     Solution<Scalar> solution = detail::solve_active_set(influence_, undeformed_distance, loading, options_,
                                                          set_solver, workspace_, last_set_);
-    last_set_ = detail::contact_set(solution);
+    detail::contact_set(solution, last_set_);
     return solution;
   }
 
@@ -102,10 +105,23 @@ class NormSolver {
       factorisation.cholesky.solve_in_place(columns);
       return true;
     }
+    void displacement(const std::vector<Index>& targets, const std::vector<Index>& active,
+                      const Eigen::Ref<const Vector>& pressure, Eigen::Ref<Vector> result) const {
+      influence.displacement(targets, active, pressure, result);
+    }
+  };
+
+  struct ColdWorkspace {
+    Factorisation factorisation;
+    detail::ActiveSetWorkspace<Scalar> loop;
   };
 
   InfluenceTable<Scalar> influence_;
   Options options_;
+  // Workspaces of solve (one per concurrent call), shared by copies of the solver.
+  std::shared_ptr<detail::WorkspacePool<ColdWorkspace>> cold_workspaces_ =
+      std::make_shared<detail::WorkspacePool<ColdWorkspace>>();
+  // The sequence of solve_next.
   std::vector<Index> last_set_;
   Factorisation memory_;
   detail::ActiveSetWorkspace<Scalar> workspace_;

@@ -18,24 +18,26 @@
 #include "fastnorm/influence.hpp"
 #include "fastnorm/material.hpp"
 #include "fastnorm/scratch_matrix.hpp"
-#include "fastnorm/segment_correlation.hpp"
+#include "fastnorm/segment_tables.hpp"
 #include "fastnorm/solution.hpp"
 #include "fastnorm/strips.hpp"
+#include "fastnorm/workspace_pool.hpp"
 
 namespace fastnorm {
 
-/// Settings of a reduced solver: the active-set loop's, and the memory its tables of
-/// segment correlations may take (docs/method.md §3).
+/// Settings of a reduced solver: the active-set loop's, and the memory its segment tables
+/// may take (docs/method.md §3).
 template <typename Scalar = double>
 struct ReducedOptions : ActiveSetOptions<Scalar> {
   ReducedOptions() = default;
   /// The loop's settings with the default budget (what AnySolver passes on).
   ReducedOptions(const ActiveSetOptions<Scalar>& loop) : ActiveSetOptions<Scalar>(loop) {}  // NOLINT: implicit on purpose
-  /// Most memory (bytes) for the correlation tables, shared by copies of the solver. The
-  /// tables of one pair of segment lengths take 8·q²·(n_t + n_s) bytes (double); pairs past
-  /// the budget are assembled by the direct Toeplitz product, which is slower but the same
-  /// matrix. 0 turns the tables off.
-  std::size_t correlation_budget_bytes = std::size_t(64) << 20;
+  /// Most memory (bytes) for the segment tables (segment_tables.hpp), shared by copies of
+  /// the solver. With Scalar = double, the correlation table of a pair of segment lengths
+  /// takes 8·q²·(n_t + n_s − 1) bytes, the displacement table of one length
+  /// 8·q·(2·mx − n)·my bytes. Past the budget the solver takes the direct Toeplitz
+  /// products, slower but the same numbers. 0 turns the tables off.
+  std::size_t table_budget_bytes = std::size_t(64) << 20;
 };
 
 namespace detail {
@@ -57,20 +59,26 @@ struct GalerkinMemory {
     Index unknowns() const { return matrix.rows(); }
   };
   std::vector<Matrix> blocks;       // basis block per segment element count
+  std::vector<Matrix> projections;  // its pseudo-inverse, per count (α from p = A α)
   std::vector<Assembly> path;       // the sets of this solve (only the last one unless keep_path)
   std::vector<Assembly> last_path;  // the sets of the previous solve of a sequence
   std::vector<Assembly> spare;      // storage to reuse
   bool keep_path = false;
   // Workspace of one set.
-  std::vector<Segment> segments;
+  std::vector<Segment> segments, target_runs;
   std::vector<Index> old_index;
   std::vector<std::size_t> direct;
-  ScratchMatrix<Scalar> coupling, times_basis, block_entries, reduced_rhs;
+  ScratchMatrix<Scalar> coupling, times_basis, block_entries, reduced_rhs, coefficients;
 
-  /// An assembly to fill, from the spare ones when there is one.
+  /// An assembly to fill: the spare one with the most storage, so that storage grows only
+  /// when more systems of the largest size are needed at once than ever before.
   Assembly take_spare() {
     if (spare.empty()) return Assembly();
-    Assembly assembly = std::move(spare.back());
+    const auto largest = std::max_element(spare.begin(), spare.end(), [](const Assembly& a, const Assembly& b) {
+      return a.matrix.capacity() < b.matrix.capacity();
+    });
+    Assembly assembly = std::move(*largest);
+    *largest = std::move(spare.back());
     spare.pop_back();
     return assembly;
   }
@@ -99,8 +107,8 @@ class GalerkinSetSolver {
   using Assembly = typename Memory::Assembly;
 
   GalerkinSetSolver(const InfluenceTable<Scalar>& influence, const Basis& basis,
-                    SegmentCorrelations<Scalar>& correlations, Memory& memory)
-      : influence_(influence), basis_(basis), correlations_(correlations), memory_(memory) {}
+                    SegmentTables<Scalar>& tables, Memory& memory)
+      : influence_(influence), basis_(basis), tables_(tables), memory_(memory) {}
 
   /// The set solver of solve_active_set: right-hand sides over `active` in, pressures out.
   bool solve(const std::vector<Index>& active, Eigen::Ref<Matrix> columns) {
@@ -115,7 +123,7 @@ class GalerkinSetSolver {
       last_path.erase(known);
     } else {
       next = memory_.take_spare();
-      std::swap(next.segments, memory_.segments);
+      next.segments.assign(memory_.segments.begin(), memory_.segments.end());
       next.offsets.clear();
       Index unknowns = 0;
       for (const Segment& segment : next.segments) {
@@ -166,6 +174,48 @@ class GalerkinSetSolver {
     return true;
   }
 
+  /// The join check of solve_active_set: u_t = Σ_s C_ts p_s at the elements `targets` for
+  /// pressures `pressure` on the set just solved (`active`), which lie in the span of the
+  /// basis. Per source segment, α = A⁺ p and each sorted run of targets in a strip takes q
+  /// slices of the displacement table (Eq. (M3)); without a table, n_s slices of the
+  /// influence table.
+  void displacement(const std::vector<Index>& targets, const std::vector<Index>& /*active: its segments are known*/,
+                    const Eigen::Ref<const Eigen::Matrix<Scalar, Eigen::Dynamic, 1>>& pressure,
+                    Eigen::Ref<Eigen::Matrix<Scalar, Eigen::Dynamic, 1>> result) {
+    FASTNORM_ASSERT(!memory_.path.empty());
+    const Assembly& assembly = memory_.path.back();
+    FASTNORM_ASSERT(assembly.segments.empty() ||
+                    pressure.size() == assembly.segments.back().set_position + assembly.segments.back().count);
+    const Index mx = influence_.grid().mx(), my = influence_.grid().my();
+    segment_strips(influence_.grid(), targets, memory_.target_runs);
+    result.setZero();
+    auto block_of_count = [this](Index count) { return block_of(count); };
+    for (const Segment& source : assembly.segments) {
+      const auto source_pressure = pressure.segment(source.set_position, source.count);
+      const Matrix* table =
+          is_identity(source.count) ? nullptr : tables_.displacement(source.count, block_of_count, influence_);
+      if (table != nullptr) {
+        auto alpha = memory_.coefficients.resize(basis_.unknowns(), 1);
+        alpha.noalias() = projection_of(source.count) * source_pressure;
+        for (const Segment& run : memory_.target_runs) {
+          const Index row = run.first - source.first + mx - source.count, dj = std::abs(run.strip - source.strip);
+          auto displacement = result.segment(run.set_position, run.count);
+          for (Index b = 0; b < alpha.rows(); ++b) {
+            displacement += alpha(b) * table->col(b * my + dj).segment(row, run.count);
+          }
+        }
+      } else {
+        for (const Segment& run : memory_.target_runs) {
+          auto displacement = result.segment(run.set_position, run.count);
+          for (Index m = 0; m < source.count; ++m) {
+            displacement +=
+                source_pressure(m) * influence_.run(run.first - source.first - m, run.strip - source.strip, run.count);
+          }
+        }
+      }
+    }
+  }
+
  private:
   /// A segment with no more elements than the basis has functions keeps one unknown per
   /// element (identity block), as the paper does at leading and trailing edges.
@@ -179,6 +229,15 @@ class GalerkinSetSolver {
     auto& block = blocks[static_cast<std::size_t>(count)];
     if (block.size() == 0) block = basis_.template block<Scalar>(count);
     return block;
+  }
+
+  /// The pseudo-inverse A⁺ of the basis block of `count` elements (cached): α = A⁺ p for p = A α.
+  const Matrix& projection_of(Index count) {
+    auto& projections = memory_.projections;
+    if (static_cast<Index>(projections.size()) <= count) projections.resize(static_cast<std::size_t>(count) + 1);
+    auto& projection = projections[static_cast<std::size_t>(count)];
+    if (projection.size() == 0) projection = Eigen::CompleteOrthogonalDecomposition<Matrix>(basis_of(count)).pseudoInverse();
+    return projection;
   }
 
   /// Position of `segment` in the assembly `previous`, or −1.
@@ -220,7 +279,7 @@ class GalerkinSetSolver {
         if (old_index[s] >= 0 && old_index[t] >= 0) {  // both unchanged: copy
           block = previous->matrix.view().block(previous->offsets[static_cast<std::size_t>(old_index[t])],
                                                 previous->offsets[static_cast<std::size_t>(old_index[s])], q_t, q_s);
-        } else if (const Matrix* correlation = correlations_.find(target.count, source.count, block_of_count)) {
+        } else if (const Matrix* correlation = tables_.correlation(target.count, source.count, block_of_count)) {
           // Σ_d c(Δ + d, dj) K(d), d = −(n_s − 1) … n_t − 1: K's column a + q_t·b is entry (a, b).
           auto entries = memory_.block_entries.resize(q_t * q_s, 1);
           entries.noalias() =
@@ -262,7 +321,7 @@ class GalerkinSetSolver {
 
   const InfluenceTable<Scalar>& influence_;
   const Basis& basis_;
-  SegmentCorrelations<Scalar>& correlations_;
+  SegmentTables<Scalar>& tables_;
   Memory& memory_;
 };
 
@@ -289,8 +348,7 @@ class ReducedSolver {
       : influence_(grid, material),
         basis_(basis),
         options_(options),
-        correlations_(std::make_shared<detail::SegmentCorrelations<Scalar>>(grid.mx(),
-                                                                            options.correlation_budget_bytes)) {
+        tables_(std::make_shared<detail::SegmentTables<Scalar>>(grid.mx(), options.table_budget_bytes)) {
     options_.validate();
   }
 
@@ -303,10 +361,11 @@ class ReducedSolver {
   /// @throws fastnorm::invalid_argument for wrong sizes or non-finite h
   Solution<Scalar> solve(const Eigen::Ref<const Vector>& undeformed_distance,
                          const Loading<Scalar>& loading) const {
-    Memory memory;
-    detail::ActiveSetWorkspace<Scalar> workspace;
-    detail::GalerkinSetSolver<Basis, Scalar> set_solver(influence_, basis_, *correlations_, memory);
-    return detail::solve_active_set(influence_, undeformed_distance, loading, options_, set_solver, workspace);
+    auto workspace = cold_workspaces_->take();  // its storage, none of its sets
+    workspace->memory.recycle(workspace->memory.path);
+    detail::GalerkinSetSolver<Basis, Scalar> set_solver(influence_, basis_, *tables_, workspace->memory);
+    return detail::solve_active_set(influence_, undeformed_distance, loading, options_, set_solver,
+                                    workspace->loop);
   }
 
   /// As solve, for the next problem of a sequence on this grid. The answer of a reduced
@@ -317,27 +376,35 @@ class ReducedSolver {
   Solution<Scalar> solve_next(const Eigen::Ref<const Vector>& undeformed_distance, const Loading<Scalar>& loading) {
     memory_.keep_path = true;
     memory_.next_problem();
-    detail::GalerkinSetSolver<Basis, Scalar> set_solver(influence_, basis_, *correlations_, memory_);
+    detail::GalerkinSetSolver<Basis, Scalar> set_solver(influence_, basis_, *tables_, memory_);
     return detail::solve_active_set(influence_, undeformed_distance, loading, options_, set_solver, workspace_);
   }
 
-  /// Forgets the assemblies of the previous problem (not the correlation tables: they do
-  /// not depend on h).
+  /// Forgets the assemblies of the previous problem (not the segment tables: they do not
+  /// depend on h).
   void reset() {
     memory_.recycle(memory_.path);
     memory_.recycle(memory_.last_path);
   }
 
-  /// Memory the correlation tables take now (bytes); shared with copies of this solver.
-  std::size_t correlation_bytes() const { return correlations_->used_bytes(); }
+  /// Memory the segment tables take now (bytes); shared with copies of this solver.
+  std::size_t table_bytes() const { return tables_->used_bytes(); }
 
  private:
   using Memory = detail::GalerkinMemory<Scalar>;
+  struct ColdWorkspace {
+    Memory memory;
+    detail::ActiveSetWorkspace<Scalar> loop;
+  };
   InfluenceTable<Scalar> influence_;
   Basis basis_;
   Options options_;
   // Built on first use; h-independent, so copies share them (thread-safe).
-  std::shared_ptr<detail::SegmentCorrelations<Scalar>> correlations_;
+  std::shared_ptr<detail::SegmentTables<Scalar>> tables_;
+  // Workspaces of solve (one per concurrent call), shared by copies like the tables.
+  std::shared_ptr<detail::WorkspacePool<ColdWorkspace>> cold_workspaces_ =
+      std::make_shared<detail::WorkspacePool<ColdWorkspace>>();
+  // The sequence of solve_next.
   Memory memory_;
   detail::ActiveSetWorkspace<Scalar> workspace_;
 };

@@ -27,6 +27,8 @@ class ScratchMatrix {
   /// The view of the last resize.
   Eigen::Map<Matrix> view() { return Eigen::Map<Matrix>(values_.data(), rows_, cols_); }
   Eigen::Map<const Matrix> view() const { return Eigen::Map<const Matrix>(values_.data(), rows_, cols_); }
+  /// Values the storage holds without growing.
+  std::size_t capacity() const { return values_.size(); }
   Index rows() const { return rows_; }
   Index cols() const { return cols_; }
 

@@ -1,4 +1,6 @@
 #include <catch2/catch.hpp>
+
+#include <algorithm>
 #include <cmath>
 #include <fastnorm/influence.hpp>
 #include <vector>
@@ -164,6 +166,16 @@ TEST_CASE("Dense blocks and displacements read the same table", "[influence]") {
   const Eigen::VectorXd by_block = block * pressure;
   const Eigen::VectorXd by_sum = table.displacement(set, set, pressure);
   CHECK((by_block - by_sum).cwiseAbs().maxCoeff() <= 1e-14 * by_block.cwiseAbs().maxCoeff());
+  // Targets in any order, in place: the same displacements, reordered.
+  const std::vector<Eigen::Index> shuffled{53, 4, 40, 0, 22, 13};
+  Eigen::VectorXd in_place(static_cast<Eigen::Index>(shuffled.size()));
+  table.displacement(shuffled, set, pressure, in_place);
+  for (std::size_t t = 0; t < shuffled.size(); ++t) {
+    const auto r = static_cast<Eigen::Index>(std::find(set.begin(), set.end(), shuffled[t]) - set.begin());
+    CHECK(in_place(static_cast<Eigen::Index>(t)) == Approx(by_block(r)).epsilon(1e-14));
+  }
+  Eigen::VectorXd wrong_size(2);
+  CHECK_THROWS_WITH(table.displacement(shuffled, set, pressure, wrong_size), Catch::Matchers::Contains("result"));
 
   Eigen::VectorXd full = Eigen::VectorXd::Zero(grid.size());
   for (std::size_t r = 0; r < set.size(); ++r) full(set[r]) = pressure(static_cast<Eigen::Index>(r));

@@ -97,3 +97,19 @@ TEST_CASE("Warm CG gives the cold answers along a moving indenter", "[sequence][
   require_warm_equals_cold("cg", 1e-6, Iterations::fewer, fastnorm::Loading<>::force(5e4));
   require_warm_equals_cold("cg", 1e-6, Iterations::fewer, fastnorm::Loading<>::approach());
 }
+
+TEST_CASE("A cold solve does not depend on what the solver solved before", "[sequence][warm]") {
+  // solve borrows workspace storage from the solver's pool, never its sets or factors.
+  const Sequence sequence = moving_indenter(20, 8, 0.0);
+  for (const char* name : {"norm", "elliptic", "polynomial:4"}) {
+    const fastnorm::AnySolver<> solver(name, sequence.grid, steel);
+    const auto loading = fastnorm::Loading<>::force(5e4);
+    const auto first = solver.solve(sequence.h.front(), loading);
+    (void)solver.solve(sequence.h.back(), loading);
+    const auto again = solver.solve(sequence.h.front(), loading);
+    INFO(name);
+    REQUIRE(first.status == fastnorm::Status::converged);
+    CHECK(again.iterations == first.iterations);
+    CHECK(again.pressure == first.pressure);
+  }
+}

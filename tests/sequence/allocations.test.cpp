@@ -1,0 +1,101 @@
+// No allocation inside the solve loop (docs/performance.md §3): once a solver has met its
+// largest problem, a solve allocates only its result, however many active-set iterations
+// it takes. The heap allocations of this test executable's own code are counted through
+// the linker's --wrap of malloc (Eigen's allocator) and of operator new (the containers').
+#include <catch2/catch.hpp>
+
+#if defined(FASTNORM_COUNT_MALLOC)
+
+#include <fastnorm/any_solver.hpp>
+#include <fastnorm/hertz.hpp>
+
+#include <atomic>
+#include <cstddef>
+#include <string>
+#include <vector>
+
+namespace {
+std::atomic<long> allocation_count{0};
+}  // namespace
+
+// The linker sends this executable's calls of malloc and operator new (_Znwm) here.
+extern "C" void* __real_malloc(std::size_t size);  // NOLINT: the linker's names
+extern "C" void* __wrap_malloc(std::size_t size) {
+  allocation_count.fetch_add(1, std::memory_order_relaxed);
+  return __real_malloc(size);
+}
+extern "C" void* __real__Znwm(std::size_t size);
+extern "C" void* __wrap__Znwm(std::size_t size) {
+  allocation_count.fetch_add(1, std::memory_order_relaxed);
+  return __real__Znwm(size);
+}
+
+namespace {
+
+const fastnorm::Material<> steel(2.1e11, 0.3);
+
+template <typename Call>
+long allocations_of(const Call& call) {
+  const long before = allocation_count.load();
+  call();
+  return allocation_count.load() - before;
+}
+
+/// A Hertz indenter, tilted by `tilt` (rad), so two problems take different active sets.
+Eigen::VectorXd indenter(const fastnorm::Grid<>& grid, double tilt) {
+  Eigen::VectorXd h = fastnorm::hertz_undeformed_distance(grid, 0.3, 0.2);
+  for (Eigen::Index k = 0; k < grid.size(); ++k) h(k) += tilt * grid.y_of(k) - 4e-5;
+  return h;
+}
+
+// A Solution's own storage: pressure and in_contact. (Its message is allocated inside the
+// shared libstdc++, which the wrap does not see.)
+constexpr long result_allocations = 2;
+
+}  // namespace
+
+TEST_CASE("Solvers in a repeated sequence allocate only their results", "[sequence][allocation]") {
+  const auto hertz = fastnorm::hertz_from_force(0.3, 0.2, steel.combined_modulus(), 5e4);
+  // Small enough that NORM's dense blocks stay below 128 KB: past that, Eigen's blocked
+  // Cholesky takes its packing buffers from the heap (docs/performance.md §3).
+  const auto grid = fastnorm::hertz_grid(hertz, 16, 1.4);
+  const Eigen::VectorXd first = indenter(grid, 0.0), second = indenter(grid, 4e-4);
+  Eigen::VectorXd kept;
+  REQUIRE(allocations_of([&] { kept.resize(10); }) == 1);  // the counter sees Eigen's allocations
+
+  for (const char* name : {"norm", "elliptic", "polynomial:4"}) {
+    for (const auto& loading : {fastnorm::Loading<>::approach(), fastnorm::Loading<>::force(5e4)}) {
+      fastnorm::ActiveSetOptions<> options;
+      options.start_depth_fraction = 1;  // Kalker's start: elements leave over several iterations
+      fastnorm::AnySolver<> solver(name, grid, steel, options);
+      // A round: both problems warm and cold. The first rounds grow the storage to the
+      // largest set, build the tables, and let every recycled assembly hold the largest
+      // system; from then on a round allocates only its four results.
+      std::vector<fastnorm::Solution<>> results(4);
+      auto round = [&] {
+        results[0] = solver.solve_next(first, loading);
+        results[1] = solver.solve_next(second, loading);
+        results[2] = solver.solve(first, loading);
+        results[3] = solver.solve(second, loading);
+      };
+      for (int warm_up = 0; warm_up < 3; ++warm_up) round();
+      const long allocations = allocations_of(round);
+      INFO(name << (loading.control == fastnorm::Control::force ? " force" : " approach"));
+      int iterations = 0;
+      for (const auto& result : results) {
+        REQUIRE(result.status == fastnorm::Status::converged);
+        iterations += result.iterations;
+      }
+      CHECK(iterations >= 8);  // the loop ran: on average two iterations a call or more
+      CHECK(allocations <= 4 * result_allocations);
+    }
+  }
+}
+
+#else
+
+TEST_CASE("Solvers in a repeated sequence allocate only their results", "[sequence][allocation]") {
+  WARN("allocation counting needs the GNU linker's --wrap; not counted in this build");
+}
+
+#endif
