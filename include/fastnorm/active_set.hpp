@@ -7,12 +7,12 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <optional>
 #include <string>
 #include <vector>
 
 #include "fastnorm/error.hpp"
 #include "fastnorm/influence.hpp"
+#include "fastnorm/scratch_matrix.hpp"
 #include "fastnorm/solution.hpp"
 
 namespace fastnorm {
@@ -111,8 +111,9 @@ struct ActiveSetWorkspace {
   std::vector<Index> active, kept, candidates, joining, admissible_set;
   std::vector<Index> visited_elements;   // every set of this solve, one after the other
   std::vector<std::size_t> visited_ends;  // where each ends in visited_elements
-  std::vector<Scalar> columns;            // right-hand sides in, pressures out (n × 1 or n × 2)
-  std::vector<Scalar> admissible_pressure, displacement;
+  ScratchMatrix<Scalar> columns;          // right-hand sides in, pressures out (n × 1 or n × 2)
+  ScratchMatrix<Scalar> displacement;     // at the candidates
+  std::vector<Scalar> admissible_pressure;
   std::vector<Scalar> sorted_distance;    // of the force-control starting guess
   std::vector<char> is_active;            // per element of the grid
 
@@ -154,7 +155,6 @@ Solution<Scalar> solve_active_set(const InfluenceTable<Scalar>& influence,
                                   const std::vector<Eigen::Index>& start_set = {}) {
   using Index = Eigen::Index;
   using Vector = Eigen::Matrix<Scalar, Eigen::Dynamic, 1>;
-  using Matrix = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;
   const Grid<Scalar>& grid = influence.grid();
   check_undeformed_distance(grid, h);
   const bool force_control = loading.control == Control::force;
@@ -216,8 +216,7 @@ Solution<Scalar> solve_active_set(const InfluenceTable<Scalar>& influence,
     ++solution.iterations;
     // Step 2: solve on the current set.
     const Index n = static_cast<Index>(active.size());
-    work.columns.resize(static_cast<std::size_t>(n * column_count));
-    Eigen::Map<Matrix> columns(work.columns.data(), n, column_count);
+    auto columns = work.columns.resize(n, column_count);
     for (Index r = 0; r < n; ++r) columns(r, 0) = -h(active[static_cast<std::size_t>(r)]);
     if (force_control) columns.col(1).setOnes();
     if (!set_solver.solve(active, columns)) {
@@ -254,8 +253,8 @@ Solution<Scalar> solve_active_set(const InfluenceTable<Scalar>& influence,
       if (!work.is_active[static_cast<std::size_t>(k)] && h(k) - approach < join_below) work.candidates.push_back(k);
     }
     for (Index k : active) work.is_active[static_cast<std::size_t>(k)] = 0;
-    work.displacement.resize(work.candidates.size());
-    Eigen::Map<Vector> displacement(work.displacement.data(), static_cast<Index>(work.candidates.size()));
+    auto displacements = work.displacement.resize(static_cast<Index>(work.candidates.size()), 1);
+    auto displacement = displacements.col(0);
     set_solver.displacement(work.candidates, active, pressure, displacement);
     work.joining.clear();
     for (std::size_t t = 0; t < work.candidates.size(); ++t) {
@@ -274,7 +273,7 @@ Solution<Scalar> solve_active_set(const InfluenceTable<Scalar>& influence,
     std::inplace_merge(active.begin(), active.end() - static_cast<std::ptrdiff_t>(work.joining.size()), active.end());
   }
   // The last iterate, its negative pressures clipped, so the caller can inspect it.
-  store(active, work.columns.data(), approach);
+  store(active, work.columns.view().data(), approach);
   solution.status = Status::iteration_limit;
   solution.message = "active set still changing after " + std::to_string(solution.iterations) +
                      " iterations";

@@ -25,7 +25,6 @@ class InPlaceCholesky {
     factored_ = false;
     storage_.resize(n, n);
   }
-  Index size() const { return storage_.rows(); }
 
   /// The matrix to factorise (lower triangle), and after factorise() its factor L.
   Eigen::Map<Matrix> matrix() { return storage_.view(); }

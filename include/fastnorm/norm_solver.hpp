@@ -77,7 +77,6 @@ class NormSolver {
   /// Forgets the previous contact set and factorisation: the next solve_next starts cold.
   void reset() {
     last_set_.clear();
-    memory_.set.clear();
     memory_.valid = false;
   }
 

@@ -195,7 +195,7 @@ class GalerkinSetSolver {
       const Matrix* table =
           is_identity(source.count) ? nullptr : tables_.displacement(source.count, block_of_count, influence_);
       if (table != nullptr) {
-        auto alpha = memory_.coefficients.resize(basis_.unknowns(), 1);
+        auto alpha = memory_.coefficients.resize(basis_.unknowns(), 1);  // q ≤ n_s here
         alpha.noalias() = projection_of(source.count) * source_pressure;
         for (const Segment& run : memory_.target_runs) {
           const Index row = run.first - source.first + mx - source.count, dj = std::abs(run.strip - source.strip);

@@ -30,7 +30,6 @@ class ScratchMatrix {
   /// Values the storage holds without growing.
   std::size_t capacity() const { return values_.size(); }
   Index rows() const { return rows_; }
-  Index cols() const { return cols_; }
 
  private:
   Index rows_ = 0, cols_ = 0;
