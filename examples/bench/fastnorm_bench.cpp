@@ -220,6 +220,7 @@ void bench_growth(const std::vector<int>& sizes, int repeats, Eigen::Index norm_
 }  // namespace
 
 int main(int argc, char** argv) {
+  Eigen::setNbThreads(1);  // one thread, whether or not the build has OpenMP
   std::vector<int> sizes{30, 60, 120, 240, 480};
   std::vector<std::string> cases;
   int repeats = 5, calls = 50;

@@ -116,10 +116,8 @@ int main(int argc, char** argv) {
     const wr::Track track;
     const wr::Wheelset wheelset;
     wr::EquilibriumOptions options;
-    options.solver = arguments.solver;
+    options.solver = fastnorm::SolverSpec<double>::parse(arguments.solver);
     options.grid.elements = arguments.elements;
-    const fastnorm::AnySolver<double> probe(options.solver, fastnorm::Grid<double>(4, 4, 1, 1),
-                                            fastnorm::Material<double>(options.young_modulus, options.poisson_ratio));
     const double y = arguments.y_mm * 1e-3, yaw = arguments.yaw_deg * M_PI / 180;
     const bool single = arguments.fz > 0;
     const auto result = single ? wr::solve_single_wheel(track, wheelset,
@@ -128,7 +126,7 @@ int main(int argc, char** argv) {
                                : wr::solve_equilibrium(track, wheelset, y, yaw, arguments.load, options);
     std::printf("# status=%s solver=%s y=%.4f mm yaw=%.4f deg z=%.6f mm roll=%.6e rad vertical_force=%.3f N "
                 "lateral_force=%.3f N iterations=%d%s%s\n",
-                to_string(result.status), probe.name().c_str(), arguments.y_mm, arguments.yaw_deg, result.pose.z * 1e3,
+                to_string(result.status), options.solver.name().c_str(), arguments.y_mm, arguments.yaw_deg, result.pose.z * 1e3,
                 result.pose.roll, result.vertical_force, result.lateral_force, result.iterations,
                 result.message.empty() ? "" : " message=", result.message.c_str());
     if (!result.ok()) return 1;
@@ -144,7 +142,7 @@ int main(int argc, char** argv) {
                   solution.pressure.maxCoeff(), patch.frame.reference.x() * 1e3, patch.frame.reference.y() * 1e3,
                   patch.frame.contact_angle(), -patch.undeformed_distance.minCoeff());
       // Full NORM on the same patch, for --compare and the outline in --svg.
-      const bool solved_by_norm = probe.name() == "norm";
+      const bool solved_by_norm = options.solver.name() == "norm";
       fastnorm::Solution<double> norm = solution;
       if (!solved_by_norm && (arguments.compare || !arguments.svg_prefix.empty())) {
         norm = fastnorm::NormSolver<double>(patch.grid, material)
@@ -155,7 +153,7 @@ int main(int argc, char** argv) {
       const std::string stem = std::string("_") + wheel + "_" + std::to_string(k);
       if (!arguments.case_prefix.empty()) {
         fastnorm::Case<double> problem{wheel + std::string(" wheel, patch ") + std::to_string(k),
-                                       "fastnorm-wheelrail " + probe.name(), patch.grid, material,
+                                       "fastnorm-wheelrail " + options.solver.name(), patch.grid, material,
                                        fastnorm::Loading<double>::approach(), 0, patch.undeformed_distance,
                                        fastnorm::CaseResult<double>{solution.normal_force, 0, solution.contact_count(),
                                                                     solution.iterations, 0, solution.pressure}};
@@ -169,7 +167,7 @@ int main(int argc, char** argv) {
             std::string(wheel) + " wheel, patch " + std::to_string(k) + ": y = " +
                 fastnorm_example::number(arguments.y_mm) + " mm, yaw = " + fastnorm_example::number(arguments.yaw_deg) +
                 " deg, Fn = " + fastnorm_example::number(solution.normal_force / 1e3, "%.1f") + " kN",
-            patch.grid, norm, "NORM", solved_by_norm ? nullptr : &solution, probe.name());
+            patch.grid, norm, "NORM", solved_by_norm ? nullptr : &solution, options.solver.name());
       }
     }
     return 0;

@@ -115,9 +115,9 @@ int main(int argc, char** argv) {
         const auto& p = positions[k];
         wr::EquilibriumOptions options;
         options.grid.elements = elements;
-        options.solver = "elliptic";
+        options.solver = fastnorm::SolverSpec<double>::parse("elliptic");
         const auto first = wr::solve_equilibrium(track, wheelset, p.y_mm * 1e-3, p.yaw_deg * M_PI / 180, p.load, options);
-        options.solver = "norm";
+        options.solver = fastnorm::SolverSpec<double>();  // norm
         if (first.ok()) options.start = first.pose;
         outcomes[k] = {p, wr::solve_equilibrium(track, wheelset, p.y_mm * 1e-3, p.yaw_deg * M_PI / 180, p.load, options), {}};
       }

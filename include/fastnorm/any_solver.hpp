@@ -1,85 +1,120 @@
 #pragma once
 /// @file any_solver.hpp
-/// A solver chosen at run time by name (for tools and studies that compare solvers):
-///   norm | cg | elliptic | polynomial[:G] | elliptic-edge[:K] | polynomial-edge[:G[:K]]
-/// G is the polynomial grade (default 4), K the free edge elements per segment end
-/// (default 1).
+/// A solver chosen at run time by a SolverSpec (or its name, solver_spec.hpp): for tools,
+/// studies and the wheel–rail layer. Including this header instantiates nothing; using
+/// AnySolver instantiates every solver, so code that needs one solver only should name it.
 
+#include <Eigen/Core>
 #include <memory>
-#include <sstream>
 #include <string>
-#include <vector>
+#include <utility>
 
 #include "fastnorm/bases.hpp"
 #include "fastnorm/cg_solver.hpp"
-#include "fastnorm/error.hpp"
+#include "fastnorm/detail/solver_base.hpp"
 #include "fastnorm/norm_solver.hpp"
 #include "fastnorm/reduced_solver.hpp"
+#include "fastnorm/solver_spec.hpp"
+#include "fastnorm/warm_start.hpp"
 
 namespace fastnorm {
 
-/// Any of fastnorm's solvers behind one interface. A copy is a separate solver with its own
-/// memory of the sequence (see solve_next).
+template <typename Scalar>
+class AnySolver;
+
+/// The workspace of an AnySolver: holds the workspace of the solver it was last used with
+/// (created on first use; replaced, keeping its start, when used with a solver of another
+/// kind).
 template <typename Scalar = double>
-class AnySolver {
+class AnyWorkspace {
+ public:
+  AnyWorkspace() = default;
+  AnyWorkspace(const AnyWorkspace& other) : model_(other.model_ ? other.model_->clone() : nullptr), pending_(other.pending_) {}
+  AnyWorkspace& operator=(const AnyWorkspace& other) {
+    if (this != &other) *this = AnyWorkspace(other);
+    return *this;
+  }
+  AnyWorkspace(AnyWorkspace&&) noexcept = default;
+  AnyWorkspace& operator=(AnyWorkspace&&) noexcept = default;
+  ~AnyWorkspace() = default;
+
+  /// Where the next solve starts (see the workspace of each solver).
+  WarmStart<Scalar>& start() { return model_ ? model_->start() : pending_; }
+  const WarmStart<Scalar>& start() const { return model_ ? model_->start() : pending_; }
+  /// The next solve is cold (storage kept).
+  void forget() {
+    if (model_) model_->forget();
+    pending_.clear();
+  }
+
+ private:
+  template <typename>
+  friend class AnySolver;
+
+  struct Model {
+    virtual ~Model() = default;
+    virtual WarmStart<Scalar>& start() = 0;
+    virtual void forget() = 0;
+    virtual std::unique_ptr<Model> clone() const = 0;
+  };
+  template <typename Workspace>
+  struct Holder final : Model {
+    WarmStart<Scalar>& start() override { return workspace.start(); }
+    void forget() override { workspace.forget(); }
+    std::unique_ptr<Model> clone() const override { return std::make_unique<Holder>(*this); }
+    Workspace workspace;
+  };
+
+  /// The held workspace as a `Workspace`, replaced by a new one (with the same start) if it
+  /// is of another type.
+  template <typename Workspace>
+  Workspace& as() {
+    if (auto* held = dynamic_cast<Holder<Workspace>*>(model_.get())) return held->workspace;
+    auto fresh = std::make_unique<Holder<Workspace>>();
+    fresh->workspace.start() = std::move(start());
+    model_ = std::move(fresh);
+    pending_.clear();
+    return static_cast<Holder<Workspace>&>(*model_).workspace;
+  }
+
+  std::unique_ptr<Model> model_;
+  WarmStart<Scalar> pending_;  // the start set before the first solve
+};
+
+/// Any of fastnorm's solvers behind one interface (the solver concept of
+/// docs/architecture.md §2). A copy is a separate solver with its own sequence workspace.
+template <typename Scalar = double>
+class AnySolver : public detail::SolverBase<AnySolver<Scalar>, AnyWorkspace<Scalar>, Scalar> {
+  using Base = detail::SolverBase<AnySolver<Scalar>, AnyWorkspace<Scalar>, Scalar>;
+
  public:
   using Vector = Eigen::Matrix<Scalar, Eigen::Dynamic, 1>;
+  using Workspace = AnyWorkspace<Scalar>;
+  using Base::solve;
 
-  /// @param name see the file comment
-  /// @throws fastnorm::invalid_argument for an unknown name or bad G, K
-  AnySolver(const std::string& name, const Grid<Scalar>& grid, const Material<Scalar>& material,
-            ActiveSetOptions<Scalar> options = {}) {
-    std::vector<std::string> parts;
-    std::istringstream split(name);
-    for (std::string part; std::getline(split, part, ':');) parts.push_back(part);
-    FASTNORM_CHECK(!parts.empty(), "solver: empty solver name");
-    const std::string& kind = parts[0];
-    auto number = [&](std::size_t at, int fallback, const char* what) {
-      if (parts.size() <= at) return fallback;
-      std::size_t used = 0;
-      int value = 0;
-      try {
-        value = std::stoi(parts[at], &used);
-      } catch (const std::exception&) {
-        used = 0;
-      }
-      FASTNORM_CHECK(used == parts[at].size() && used > 0,
-                     "solver '" + name + "': " + what + " must be a whole number, not '" + parts[at] + "'");
-      return value;
-    };
-    auto max_parts = [&](std::size_t count) {
-      FASTNORM_CHECK(parts.size() <= count, "solver '" + name + "': too many ':' fields");
-    };
-    if (kind == "norm") {
-      max_parts(1);
-      adopt(NormSolver<Scalar>(grid, material, options), "norm");
-    } else if (kind == "cg") {
-      max_parts(1);
-      adopt(CgSolver<Scalar>(grid, material), "cg");
-    } else if (kind == "elliptic") {
-      max_parts(1);
-      adopt(ReducedSolver<EllipticBasis, Scalar>(grid, material, EllipticBasis(), options), kind);
-    } else if (kind == "polynomial") {
-      max_parts(2);
-      const PolynomialBasis basis(number(1, 4, "the grade G"));
-      adopt(ReducedSolver<PolynomialBasis, Scalar>(grid, material, basis, options), basis.name());
-    } else if (kind == "elliptic-edge") {
-      max_parts(2);
-      const EllipticEdgeBasis basis(EllipticBasis(), number(1, 1, "the edge elements K"));
-      adopt(ReducedSolver<EllipticEdgeBasis, Scalar>(grid, material, basis, options), basis.name());
-    } else if (kind == "polynomial-edge") {
-      max_parts(3);
-      const PolynomialEdgeBasis basis(PolynomialBasis(number(1, 4, "the grade G")),
-                                      number(2, 1, "the edge elements K"));
-      adopt(ReducedSolver<PolynomialEdgeBasis, Scalar>(grid, material, basis, options), basis.name());
-    } else {
-      FASTNORM_CHECK(false, "unknown solver '" + name +
-                                "' (known: norm, cg, elliptic, polynomial[:G], elliptic-edge[:K], "
-                                "polynomial-edge[:G[:K]])");
+  /// @throws fastnorm::invalid_argument for an invalid spec
+  AnySolver(const SolverSpec<Scalar>& spec, const Grid<Scalar>& grid, const Material<Scalar>& material)
+      : spec_(spec) {
+    spec_.validate();
+    using Kind = typename SolverSpec<Scalar>::Kind;
+    switch (spec_.kind) {
+      case Kind::norm: adopt(NormSolver<Scalar>(grid, material, spec_.active_set)); break;
+      case Kind::cg: adopt(CgSolver<Scalar>(grid, material, spec_.cg)); break;
+      case Kind::elliptic: adopt_reduced(grid, material, EllipticBasis()); break;
+      case Kind::polynomial: adopt_reduced(grid, material, PolynomialBasis(spec_.grade)); break;
+      case Kind::elliptic_edge: adopt_reduced(grid, material, EllipticEdgeBasis(EllipticBasis(), spec_.edge_elements)); break;
+      case Kind::polynomial_edge:
+        adopt_reduced(grid, material, PolynomialEdgeBasis(PolynomialBasis(spec_.grade), spec_.edge_elements));
+        break;
     }
   }
 
-  AnySolver(const AnySolver& other) : model_(other.model_->clone()), name_(other.name_) {}
+  /// By name, with default options.
+  /// @throws fastnorm::invalid_argument for an unknown name or bad G, K
+  AnySolver(const std::string& name, const Grid<Scalar>& grid, const Material<Scalar>& material)
+      : AnySolver(SolverSpec<Scalar>::parse(name), grid, material) {}
+
+  AnySolver(const AnySolver& other) : Base(other), spec_(other.spec_), model_(other.model_->clone()) {}
   AnySolver& operator=(const AnySolver& other) {
     if (this != &other) *this = AnySolver(other);
     return *this;
@@ -89,52 +124,48 @@ class AnySolver {
   ~AnySolver() = default;
 
   /// The canonical name, with defaults filled in (e.g. "polynomial:4").
-  const std::string& name() const { return name_; }
+  std::string name() const { return spec_.name(); }
+  const SolverSpec<Scalar>& spec() const { return spec_; }
+  const Grid<Scalar>& grid() const { return model_->grid(); }
 
-  /// As NormSolver::solve: a cold solve.
-  Solution<Scalar> solve(const Eigen::Ref<const Vector>& undeformed_distance, const Loading<Scalar>& loading) const {
-    return model_->solve(undeformed_distance, loading);
+  /// The chosen solver's solve(h, loading, workspace).
+  Solution<Scalar> solve(const Eigen::Ref<const Vector>& undeformed_distance, const Loading<Scalar>& loading,
+                         Workspace& workspace) const {
+    return model_->solve(undeformed_distance, loading, workspace);
   }
-
-  /// As NormSolver::solve_next: warm-started from the previous solve_next of this object.
-  Solution<Scalar> solve_next(const Eigen::Ref<const Vector>& undeformed_distance, const Loading<Scalar>& loading) {
-    return model_->solve_next(undeformed_distance, loading);
-  }
-
-  /// The next solve_next starts cold.
-  void reset() { model_->reset(); }
 
  private:
   struct Model {
     virtual ~Model() = default;
-    virtual Solution<Scalar> solve(const Eigen::Ref<const Vector>& h, const Loading<Scalar>& loading) const = 0;
-    virtual Solution<Scalar> solve_next(const Eigen::Ref<const Vector>& h, const Loading<Scalar>& loading) = 0;
-    virtual void reset() = 0;
+    virtual Solution<Scalar> solve(const Eigen::Ref<const Vector>& h, const Loading<Scalar>& loading,
+                                   Workspace& workspace) const = 0;
+    virtual const Grid<Scalar>& grid() const = 0;
     virtual std::unique_ptr<Model> clone() const = 0;
   };
 
   template <typename Solver>
   struct Holder final : Model {
     explicit Holder(Solver held) : solver(std::move(held)) {}
-    Solution<Scalar> solve(const Eigen::Ref<const Vector>& h, const Loading<Scalar>& loading) const override {
-      return solver.solve(h, loading);
+    Solution<Scalar> solve(const Eigen::Ref<const Vector>& h, const Loading<Scalar>& loading,
+                           Workspace& workspace) const override {
+      return solver.solve(h, loading, workspace.template as<typename Solver::Workspace>());
     }
-    Solution<Scalar> solve_next(const Eigen::Ref<const Vector>& h, const Loading<Scalar>& loading) override {
-      return solver.solve_next(h, loading);
-    }
-    void reset() override { solver.reset(); }
+    const Grid<Scalar>& grid() const override { return solver.grid(); }
     std::unique_ptr<Model> clone() const override { return std::make_unique<Holder>(solver); }
     Solver solver;
   };
 
   template <typename Solver>
-  void adopt(Solver solver, const std::string& name) {
+  void adopt(Solver solver) {
     model_ = std::make_unique<Holder<Solver>>(std::move(solver));
-    name_ = name;
+  }
+  template <typename Basis>
+  void adopt_reduced(const Grid<Scalar>& grid, const Material<Scalar>& material, Basis basis) {
+    adopt(ReducedSolver<Basis, Scalar>(grid, material, std::move(basis), spec_.reduced_options()));
   }
 
+  SolverSpec<Scalar> spec_;
   std::unique_ptr<Model> model_;
-  std::string name_;
 };
 
 }  // namespace fastnorm

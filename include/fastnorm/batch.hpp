@@ -1,8 +1,8 @@
 #pragma once
 /// @file batch.hpp
 /// Independent problems on one grid solved in parallel (e.g. the patches of a lookup
-/// table): OpenMP threads when the compiler has OpenMP (fastnorm's CMake target adds it
-/// when found; FASTNORM_OPENMP=OFF turns it off), one after the other otherwise. Each
+/// table): OpenMP threads when compiled with OpenMP (link the CMake target fastnorm::openmp
+/// instead of fastnorm::fastnorm), one after the other otherwise. Each
 /// problem is a cold `solve`, so the answers are the same either way and in any order.
 
 #include <Eigen/Core>

@@ -8,45 +8,54 @@
 #include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
-#include <limits>
+#include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
-#include "fastnorm/active_set.hpp"
+#include "fastnorm/detail/solver_base.hpp"
+#include "fastnorm/detail/solver_input.hpp"
 #include "fastnorm/error.hpp"
 #include "fastnorm/fft_convolution.hpp"
 #include "fastnorm/grid.hpp"
 #include "fastnorm/influence.hpp"
 #include "fastnorm/material.hpp"
 #include "fastnorm/solution.hpp"
+#include "fastnorm/solver_options.hpp"
+#include "fastnorm/warm_start.hpp"
 
 namespace fastnorm {
 
-/// Settings of the conjugate-gradient solver.
-template <typename Scalar = double>
-struct CgOptions {
-  /// Stop when the complementarity error (docs/performance.md Eq. (P1)) — the largest
-  /// |gap| where p > 0 and the largest interpenetration where p = 0 — is at most
-  /// `tolerance` times the largest interpenetration of the undeformed surfaces.
-  Scalar tolerance = Scalar(1e-9);
-  /// Most iterations (products C t) before Status::iteration_limit.
-  int max_iterations = 5000;
+template <typename Scalar>
+class CgSolver;
 
-  /// @throws fastnorm::invalid_argument naming the offending field
-  void validate() const {
-    FASTNORM_CHECK(std::isfinite(tolerance) && tolerance > 0,
-                   detail::describe("options: tolerance must be positive and finite", tolerance));
-    FASTNORM_CHECK(max_iterations >= 1,
-                   detail::describe("options: max_iterations must be >= 1", max_iterations));
-  }
+/// What a CgSolver keeps between solves: the starting pressures, its FFT plans and buffers,
+/// and the iteration's vectors, all allocated on the first solve. One per thread.
+template <typename Scalar = double>
+class CgWorkspace {
+ public:
+  /// Where the next solve starts; after a solve, its pressures and contact set.
+  WarmStart<Scalar>& start() { return start_; }
+  const WarmStart<Scalar>& start() const { return start_; }
+  /// The next solve is cold (storage kept).
+  void forget() { start_.clear(); }
+
+ private:
+  friend class CgSolver<Scalar>;
+  using Vector = Eigen::Matrix<Scalar, Eigen::Dynamic, 1>;
+  WarmStart<Scalar> start_;
+  std::optional<FftConvolution<Scalar>> convolution_;  // a copy of the solver's
+  Vector pressure_, displacement_, gap_, direction_, product_;
+  std::vector<Eigen::Index> corrected_;  // elements whose step was clipped or that joined
+  std::vector<Scalar> sorted_distance_;  // of the force-control starting guess
 };
 
 /// The Signorini problem g = h − δ + C p ≥ 0, p ≥ 0, g·p = 0 by bound-constrained
 /// conjugate gradients on the whole grid, approach or force control.
 ///
-/// `solve` is cold and const (safe to call from several threads). `solve_next` starts from
-/// the pressures of the previous `solve_next` on this object and reuses its FFT workspace:
-/// the call to make at every time step of a simulation.
+/// `solve(h, loading, workspace)` starts from the workspace's pressures (from uniform
+/// pressure on its contact set, or on a Hertz-like overlap, when it has none); the answer
+/// is NORM's to the tolerance whatever the start.
 ///
 /// **Example**
 /// @code
@@ -54,112 +63,153 @@ struct CgOptions {
 /// auto solution = solver.solve(h, fastnorm::Loading<>::force(1e5));
 /// @endcode
 template <typename Scalar = double>
-class CgSolver {
+class CgSolver : public detail::SolverBase<CgSolver<Scalar>, CgWorkspace<Scalar>, Scalar> {
  public:
   using Index = Eigen::Index;
   using Vector = Eigen::Matrix<Scalar, Eigen::Dynamic, 1>;
   using Options = CgOptions<Scalar>;
+  using Workspace = CgWorkspace<Scalar>;
+  using detail::SolverBase<CgSolver, Workspace, Scalar>::solve;
 
   /// @throws fastnorm::invalid_argument for invalid options
   CgSolver(const Grid<Scalar>& grid, const Material<Scalar>& material, Options options = {})
-      : influence_(grid, material), options_(options), workspace_(influence_) {
+      : influence_(std::make_shared<const InfluenceTable<Scalar>>(grid, material)),
+        options_(options),
+        convolution_(std::make_shared<const FftConvolution<Scalar>>(*influence_)) {
     options_.validate();
   }
 
-  const Grid<Scalar>& grid() const { return influence_.grid(); }
-  const InfluenceTable<Scalar>& influence() const { return influence_; }
+  const Grid<Scalar>& grid() const { return influence_->grid(); }
+  const InfluenceTable<Scalar>& influence() const { return *influence_; }
   const Options& options() const { return options_; }
 
-  /// As NormSolver::solve. Solution::iterations counts conjugate-gradient iterations.
-  /// @throws fastnorm::invalid_argument for wrong sizes or non-finite h
-  Solution<Scalar> solve(const Eigen::Ref<const Vector>& undeformed_distance, const Loading<Scalar>& loading) const {
-    Workspace workspace(workspace_.convolution);
-    return run(workspace, undeformed_distance, loading, false);
+  /// As NormSolver::solve. Solution::iterations counts conjugate-gradient iterations,
+  /// Solution::residual is the complementarity error of Eq. (P1) relative to the depth.
+  /// @throws fastnorm::invalid_argument for wrong sizes, non-finite h, a bad Fn or a bad start
+  Solution<Scalar> solve(const Eigen::Ref<const Vector>& undeformed_distance, const Loading<Scalar>& loading,
+                         Workspace& workspace) const {
+    const Grid<Scalar>& grid = influence_->grid();
+    detail::check_problem(grid, undeformed_distance, loading);
+    workspace.start_.check(grid.size());
+    prepare(workspace);
+    Solution<Scalar> solution;
+    if (loading.control == Control::approach && undeformed_distance.minCoeff() >= 0) {
+      solution.pressure = Vector::Zero(grid.size());
+      solution.in_contact = Solution<Scalar>::Mask::Constant(grid.size(), false);
+      solution.status = Status::no_contact;
+      solution.message = "no element has a negative undeformed distance";
+    } else {
+      Iteration iteration{*influence_, options_, undeformed_distance, loading, workspace};
+      iteration.start();
+      solution = iteration.run();
+    }
+    workspace.start_.remember_pressure(solution);
+    return solution;
   }
-
-  /// As solve, starting from the pressures of the previous solve_next (cold on the first
-  /// call and after reset()).
-  Solution<Scalar> solve_next(const Eigen::Ref<const Vector>& undeformed_distance, const Loading<Scalar>& loading) {
-    return run(workspace_, undeformed_distance, loading, true);
-  }
-
-  /// Forgets the previous pressures: the next solve_next starts cold.
-  void reset() { workspace_.has_start = false; }
 
  private:
-  /// Everything an iteration touches, allocated once.
-  struct Workspace {
-    explicit Workspace(const FftConvolution<Scalar>& prototype) : convolution(prototype) {}
-    explicit Workspace(const InfluenceTable<Scalar>& influence) : convolution(influence) {}
-    FftConvolution<Scalar> convolution;
-    Vector pressure, displacement, gap, direction, product;
-    std::vector<Index> corrected;  // elements whose step was clipped or that joined
-    bool has_start = false;
-  };
-
   /// Up to this many clipped or joining elements per iteration, C p is updated directly
   /// (cost N each) instead of by a new FFT product (docs/performance.md §2).
   static constexpr std::size_t max_direct_corrections = 32;
 
-  Solution<Scalar> run(Workspace& work, const Eigen::Ref<const Vector>& h, const Loading<Scalar>& loading,
-                       bool warm) const {
-    const Grid<Scalar>& grid = influence_.grid();
-    detail::check_undeformed_distance(grid, h);
-    const bool force_control = loading.control == Control::force;
-    if (force_control) Loading<Scalar>::force(loading.normal_force);  // validates Fn
-    const Index n = grid.size();
-    const Scalar area = grid.element_area();
-    Vector& p = work.pressure;
-    Vector& u = work.displacement;  // C p, kept up to date
-    Vector& gap = work.gap;
-    Vector& t = work.direction;
-    Vector& r = work.product;  // C t
-    if (gap.size() != n) {
-      u.resize(n);
-      gap.resize(n);
-      t.resize(n);
-      r.resize(n);
-      work.corrected.reserve(max_direct_corrections);
+  /// Gives the workspace this solver's convolution and vectors of the grid's size.
+  void prepare(Workspace& work) const {
+    if (!work.convolution_ || !work.convolution_->same_kernel(*convolution_)) work.convolution_.emplace(*convolution_);
+    const Index n = grid().size();
+    for (Vector* vector : {&work.pressure_, &work.displacement_, &work.gap_, &work.direction_, &work.product_}) {
+      if (vector->size() != n) vector->resize(n);
+    }
+    work.corrected_.reserve(max_direct_corrections);
+  }
+
+  /// One solve: the state of the iteration and its steps.
+  struct Iteration {
+    const InfluenceTable<Scalar>& influence;
+    const Options& options;
+    const Eigen::Ref<const Vector>& h;
+    const Loading<Scalar>& loading;
+    Workspace& work;
+    Vector& p = work.pressure_;
+    Vector& u = work.displacement_;  // C p, kept up to date
+    Vector& gap = work.gap_;
+    Vector& t = work.direction_;
+    Vector& r = work.product_;  // C t
+    bool force_control = loading.control == Control::force;
+    Scalar area = influence.grid().element_area();
+    Scalar deepest = h.minCoeff();
+    Scalar approach = 0, previous_norm = 1;
+    Index contact = 0;
+    bool restart = true, fresh = true;  // fresh: u was computed by FFT, not updated
+
+    /// The starting pressures: the workspace's, uniform on its contact set, or uniform on the
+    /// Hertz-like overlap; then C p.
+    void start() {
+      const WarmStart<Scalar>& from = work.start_;
+      if (from.has_pressure()) {
+        p = from.pressure();
+      } else {
+        if (!from.contact_set().empty()) {
+          p.setZero();
+          for (Index k : from.contact_set()) p(k) = 1;
+        } else {
+          const Scalar guess = force_control ? detail::approach_guess<Scalar>(h, area, influence.combined_modulus(),
+                                                                             loading.normal_force, work.sorted_distance_)
+                                             : Scalar(0);
+          p = (h.array() < guess).template cast<Scalar>().matrix();
+        }
+        if (!force_control) {
+          // Scale so the mean displacement over the overlap matches its mean depth.
+          work.convolution_->apply(p, u);
+          p *= -h.cwiseMin(Scalar(0)).sum() / u.dot(p);
+        }
+      }
+      if (force_control) p *= loading.normal_force / (area * p.sum());
+      work.convolution_->apply(p, u);
     }
 
-    Solution<Scalar> solution;
-    const Scalar deepest = h.minCoeff();
-    if (!force_control && deepest >= 0) {
-      work.has_start = false;
-      solution.pressure = Vector::Zero(n);
-      solution.in_contact = Solution<Scalar>::Mask::Constant(n, false);
-      solution.status = Status::no_contact;
-      solution.message = "no element has a negative undeformed distance";
+    /// The loop: complementarity error judged only on a freshly computed C p.
+    Solution<Scalar> run() {
+      Solution<Scalar> solution;
+      solution.status = Status::converged;
+      solution.message = "complementarity error below tolerance";
+      int iteration = 0;
+      Scalar error = 0;
+      for (;;) {
+        error = gap_and_error();
+        if (error <= options.tolerance * (approach - deepest)) {
+          if (fresh) break;
+          work.convolution_->apply(p, u);
+          fresh = true;
+          continue;
+        }
+        if (iteration == options.max_iterations) {
+          solution.status = Status::iteration_limit;
+          solution.message = "complementarity error " + std::to_string(error / (approach - deepest)) + " after " +
+                             std::to_string(iteration) + " iterations";
+          break;
+        }
+        ++iteration;
+        conjugate_direction();
+        take_step(step_length());
+      }
+      solution.pressure = p;
+      solution.in_contact = p.array() > Scalar(0);
+      solution.normal_force = area * p.sum();
+      solution.approach = force_control ? approach : Scalar(0);
+      solution.iterations = iteration;
+      solution.residual = error / (approach - deepest);
       return solution;
     }
 
-    // Start: the previous pressures, or uniform pressure on the Hertz-like overlap.
-    if (!(warm && work.has_start && p.size() == n && p.sum() > 0)) {
-      const Scalar approach = force_control ? detail::approach_guess<Scalar>(h, area, influence_.combined_modulus(),
-                                                                     loading.normal_force)
-                                            : Scalar(0);
-      p = (h.array() < approach).template cast<Scalar>().matrix();
-      if (!force_control) {
-        // Scale so the mean displacement over the overlap matches its mean depth.
-        work.convolution.apply(p, u);
-        p *= -h.cwiseMin(Scalar(0)).sum() / u.dot(p);
-      }
-    }
-    if (force_control) p *= loading.normal_force / (area * p.sum());
-    work.convolution.apply(p, u);
-
-    const Scalar zero = 0;
-    Scalar previous_norm = 1, approach = 0;
-    bool restart = true, fresh = true;  // fresh: u was computed by FFT, not updated
-    int iteration = 0;
-    for (;;) {
-      // The gap of the current pressures and, in force control, δ = mean over the contact.
+    /// The gap of the current pressures and, in force control, δ = its mean over the
+    /// contact; returns the complementarity error, Eq. (P1).
+    Scalar gap_and_error() {
       gap = h + u;
-      Index contact = 0;
+      contact = 0;
       approach = 0;
       if (force_control) {
-        for (Index k = 0; k < n; ++k) {
-          if (p(k) > zero) {
+        for (Index k = 0; k < p.size(); ++k) {
+          if (p(k) > 0) {
             approach += gap(k);
             ++contact;
           }
@@ -167,77 +217,73 @@ class CgSolver {
         approach /= static_cast<Scalar>(contact);
         gap.array() -= approach;
       }
-      // Complementarity error, Eq. (P1); judged only on a freshly computed C p.
       Scalar error = 0;
-      for (Index k = 0; k < n; ++k) error = std::max(error, p(k) > zero ? std::abs(gap(k)) : -gap(k));
-      const Scalar depth = approach - deepest;
-      if (error <= options_.tolerance * depth) {
-        if (fresh) break;
-        work.convolution.apply(p, u);
-        fresh = true;
-        continue;
-      }
-      if (iteration == options_.max_iterations) {
-        solution.status = Status::iteration_limit;
-        solution.message = "complementarity error " + std::to_string(error / depth) + " after " +
-                           std::to_string(iteration) + " iterations";
-        break;
-      }
-      ++iteration;
+      for (Index k = 0; k < p.size(); ++k) error = std::max(error, p(k) > 0 ? std::abs(gap(k)) : -gap(k));
+      return error;
+    }
 
-      // Conjugate direction on the contact set (the gap there is its residual).
+    /// Conjugate direction t on the contact set (the gap there is its residual).
+    void conjugate_direction() {
       Scalar norm = 0;
-      for (Index k = 0; k < n; ++k) {
-        if (p(k) > zero) norm += gap(k) * gap(k);
+      for (Index k = 0; k < p.size(); ++k) {
+        if (p(k) > 0) norm += gap(k) * gap(k);
       }
       const Scalar beta = restart ? Scalar(0) : norm / previous_norm;
       previous_norm = norm;
-      for (Index k = 0; k < n; ++k) t(k) = p(k) > zero ? gap(k) + beta * t(k) : zero;
-      work.convolution.apply(t, r);
+      for (Index k = 0; k < p.size(); ++k) t(k) = p(k) > 0 ? gap(k) + beta * t(k) : Scalar(0);
+    }
+
+    /// r = C t and the step along t that minimises the energy on the contact set (with the
+    /// mean of r removed in force control, which keeps Σp fixed).
+    Scalar step_length() {
+      work.convolution_->apply(t, r);
       Scalar r_mean = 0;
       if (force_control) {
-        for (Index k = 0; k < n; ++k) {
-          if (p(k) > zero) r_mean += r(k);
+        for (Index k = 0; k < p.size(); ++k) {
+          if (p(k) > 0) r_mean += r(k);
         }
         r_mean /= static_cast<Scalar>(contact);
       }
       Scalar gt = 0, rt = 0;
-      for (Index k = 0; k < n; ++k) {
-        if (p(k) > zero) {
+      for (Index k = 0; k < p.size(); ++k) {
+        if (p(k) > 0) {
           gt += gap(k) * t(k);
           rt += (r(k) - r_mean) * t(k);
         }
       }
-      const Scalar step = gt / rt;
-      // Step, projection on p ≥ 0, and the elements that interpenetrate join with −step·g.
-      // u follows as u − step·r plus C times what the projection and the joins changed.
+      return gt / rt;
+    }
+
+    /// Step, projection on p ≥ 0, and the elements that interpenetrate join with −step·g.
+    /// u follows as u − step·r plus C times what the projection and the joins changed.
+    void take_step(Scalar step) {
       restart = false;
-      work.corrected.clear();
+      work.corrected_.clear();
       bool overflow = false;
       auto correct = [&](Index k) {
-        if (work.corrected.size() < max_direct_corrections) work.corrected.push_back(k); else overflow = true;
+        if (work.corrected_.size() < max_direct_corrections) work.corrected_.push_back(k); else overflow = true;
       };
-      for (Index k = 0; k < n; ++k) {
-        if (p(k) > zero) {
+      for (Index k = 0; k < p.size(); ++k) {
+        if (p(k) > 0) {
           p(k) -= step * t(k);
-          if (p(k) < zero) correct(k);
-        } else if (gap(k) < zero) {
+          if (p(k) < 0) correct(k);
+        } else if (gap(k) < 0) {
           p(k) = -step * gap(k);
           restart = true;
           correct(k);
         }
       }
       if (overflow) {
-        p = p.cwiseMax(zero);
-        work.convolution.apply(p, u);
+        p = p.cwiseMax(Scalar(0));
+        work.convolution_->apply(p, u);
         fresh = true;
       } else {
         u -= step * r;
-        for (Index k : work.corrected) {
+        for (Index k : work.corrected_) {
           // Clipped: p went below 0 by the step, C(·, k) adds back −p_k. Joined: adds p_k.
-          const Scalar change = t(k) != zero ? -p(k) : p(k);
-          if (t(k) != zero) p(k) = zero;
-          influence_.add_displacement(k, change, u);
+          const Scalar change = t(k) != 0 ? -p(k) : p(k);
+          if (t(k) != 0) p(k) = 0;
+          influence.add_displacement(k, change, u);
         }
         fresh = false;
       }
@@ -247,20 +293,11 @@ class CgSolver {
         u *= scale;
       }
     }
+  };
 
-    work.has_start = true;
-    solution.pressure = p;
-    solution.in_contact = p.array() > zero;
-    solution.normal_force = area * p.sum();
-    solution.approach = force_control ? approach : Scalar(0);
-    solution.iterations = iteration;
-    if (solution.status == Status::converged) solution.message = "complementarity error below tolerance";
-    return solution;
-  }
-
-  InfluenceTable<Scalar> influence_;
+  std::shared_ptr<const InfluenceTable<Scalar>> influence_;
   Options options_;
-  Workspace workspace_;
+  std::shared_ptr<const FftConvolution<Scalar>> convolution_;  // copied into each workspace
 };
 
 }  // namespace fastnorm

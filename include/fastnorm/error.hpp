@@ -29,6 +29,14 @@ std::string describe(const std::string& what, const Value& value) {
   return out.str();
 }
 
+/// A number as a person writes it in a message (six significant digits: "0.03", "1e-13").
+template <typename Value>
+std::string to_text(const Value& value) {
+  std::ostringstream out;
+  out << value;
+  return out.str();
+}
+
 }  // namespace detail
 }  // namespace fastnorm
 

@@ -1,22 +1,12 @@
 #pragma once
 /// @file fastnorm.hpp
-/// Umbrella header: everything public in fastnorm.
+/// Umbrella header: everything public in fastnorm, by module (docs/architecture.md §1).
+/// Including it costs about the parse of Eigen's headers and instantiates nothing
+/// (docs/contributing.md, compile cost).
 
 #include "fastnorm/version.hpp"
 #include "fastnorm/error.hpp"
-#include "fastnorm/grid.hpp"
-#include "fastnorm/material.hpp"
-#include "fastnorm/influence.hpp"
-#include "fastnorm/solution.hpp"
-#include "fastnorm/active_set.hpp"
-#include "fastnorm/norm_solver.hpp"
-#include "fastnorm/fft_convolution.hpp"
-#include "fastnorm/cg_solver.hpp"
-#include "fastnorm/strips.hpp"
-#include "fastnorm/bases.hpp"
-#include "fastnorm/reduced_solver.hpp"
-#include "fastnorm/any_solver.hpp"
-#include "fastnorm/batch.hpp"
 #include "fastnorm/hertz.hpp"
-#include "fastnorm/case_file.hpp"
+#include "fastnorm/solvers.hpp"
+#include "fastnorm/io.hpp"
 #include "fastnorm/wheelrail.hpp"

@@ -9,6 +9,7 @@
 #include <Eigen/Core>
 #include <algorithm>
 #include <complex>
+#include <memory>
 #include <vector>
 
 #include "fastnorm/error.hpp"
@@ -37,12 +38,13 @@ inline Eigen::Index smooth_fft_length(Eigen::Index minimum, Eigen::Index multipl
 /// out circularly on an nx × ny grid with nx ≥ 2mx − 1, ny ≥ 2my − 1, so the circular
 /// convolution of the zero-padded p equals the Toeplitz product on the grid. The kernel is
 /// even in x and y, so its transform is real; it is computed once, with the 1/(nx·ny) of
-/// the inverse transform folded in.
+/// the inverse transform folded in, and shared by copies.
 ///
 /// Transforms: real-to-half-complex along x for the my rows that hold pressure, complex
 /// along y for the nx/2 + 1 frequencies, and back. All workspace is allocated by the
 /// constructor: `apply` does not allocate. An object is not safe to share between threads
-/// (the FFT plans and workspace are its own); copy it instead.
+/// (the FFT plans and workspace are its own); copy it instead: a copy has its own plans and
+/// buffers and shares the kernel's transform.
 ///
 /// **Example**
 /// @code
@@ -67,7 +69,6 @@ class FftConvolution {
         fft_(typename Eigen::FFT<Scalar>::impl_type(),
              static_cast<typename Eigen::FFT<Scalar>::Flag>(Eigen::FFT<Scalar>::Unscaled |
                                                            Eigen::FFT<Scalar>::HalfSpectrum)),
-        symbol_(half_, ny_),
         spectrum_(half_, ny_),
         line_(static_cast<std::size_t>(ny_)),
         line_spectrum_(static_cast<std::size_t>(ny_)),
@@ -85,19 +86,23 @@ class FftConvolution {
       }
       fft_.fwd(spectrum_.col(j).data(), row.data(), nx_);
     }
+    auto symbol = std::make_shared<RealMatrix>(half_, ny_);
     for (Index kx = 0; kx < half_; ++kx) {
       forward_along_y(kx);
       // Even kernel: the imaginary parts are round-off; keep the real part.
       for (Index ky = 0; ky < ny_; ++ky) {
-        symbol_(kx, ky) = line_spectrum_[static_cast<std::size_t>(ky)].real() / static_cast<Scalar>(nx_ * ny_);
+        (*symbol)(kx, ky) = line_spectrum_[static_cast<std::size_t>(ky)].real() / static_cast<Scalar>(nx_ * ny_);
       }
     }
+    symbol_ = std::move(symbol);
     // One product creates the inverse plans and buffers, so that apply() never allocates.
     Vector zero = Vector::Zero(mx_ * my_);
     apply(zero, zero);
   }
 
   Index padded_x() const { return nx_; }
+  /// True if `other` is a copy of this convolution (or this of it): the same kernel.
+  bool same_kernel(const FftConvolution& other) const { return symbol_ == other.symbol_; }
   Index padded_y() const { return ny_; }
 
   /// u = C p: displacements (m) at every element due to the pressures p (Pa).
@@ -115,7 +120,7 @@ class FftConvolution {
     spectrum_.rightCols(ny_ - my_).setZero();
     for (Index kx = 0; kx < half_; ++kx) {
       forward_along_y(kx);
-      for (Index ky = 0; ky < ny_; ++ky) line_spectrum_[static_cast<std::size_t>(ky)] *= symbol_(kx, ky);
+      for (Index ky = 0; ky < ny_; ++ky) line_spectrum_[static_cast<std::size_t>(ky)] *= (*symbol_)(kx, ky);
       fft_.inv(line_.data(), line_spectrum_.data(), ny_);
       for (Index j = 0; j < my_; ++j) spectrum_(kx, j) = line_[static_cast<std::size_t>(j)];  // rows ≥ my unused
     }
@@ -134,7 +139,8 @@ class FftConvolution {
 
   Index mx_, my_, nx_, ny_, half_;
   Eigen::FFT<Scalar> fft_;
-  Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic> symbol_;    // half_ × ny_, real kernel spectrum / (nx·ny)
+  using RealMatrix = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;
+  std::shared_ptr<const RealMatrix> symbol_;  // half_ × ny_, real kernel spectrum / (nx·ny)
   Eigen::Matrix<Complex, Eigen::Dynamic, Eigen::Dynamic> spectrum_;  // half_ × ny_ work array
   std::vector<Complex> line_, line_spectrum_;
   Vector real_line_;

@@ -8,20 +8,56 @@
 #include <memory>
 #include <vector>
 
-#include "fastnorm/active_set.hpp"
+#include "fastnorm/detail/active_set_loop.hpp"
+#include "fastnorm/detail/in_place_cholesky.hpp"
+#include "fastnorm/detail/solver_base.hpp"
 #include "fastnorm/grid.hpp"
-#include "fastnorm/in_place_cholesky.hpp"
 #include "fastnorm/influence.hpp"
 #include "fastnorm/material.hpp"
 #include "fastnorm/solution.hpp"
-#include "fastnorm/workspace_pool.hpp"
+#include "fastnorm/solver_options.hpp"
+#include "fastnorm/warm_start.hpp"
 
 namespace fastnorm {
 
+template <typename Scalar>
+class NormSolver;
+
+/// What a NormSolver keeps between solves: the starting set, the Cholesky factor of the
+/// last set solved, and the loop's storage. One workspace per thread; it may move between
+/// solvers (a factor from another solver's table is never used).
+template <typename Scalar = double>
+class NormWorkspace {
+ public:
+  /// Where the next solve starts; after a solve, its contact set.
+  WarmStart<Scalar>& start() { return start_; }
+  const WarmStart<Scalar>& start() const { return start_; }
+  /// The next solve is cold (storage kept).
+  void forget() {
+    start_.clear();
+    factorisation_.valid = false;
+  }
+
+ private:
+  friend class NormSolver<Scalar>;
+  using Index = Eigen::Index;
+  /// The Cholesky factor of C_II for the set I last solved on `table`.
+  struct Factorisation {
+    std::vector<Index> set;
+    const void* table = nullptr;
+    bool valid = false;
+    detail::InPlaceCholesky<Scalar> cholesky;
+  };
+  WarmStart<Scalar> start_;
+  Factorisation factorisation_;
+  detail::ActiveSetWorkspace<Scalar> loop_;
+};
+
 /// Kalker's active-set NORM solver on a fixed grid and material.
 ///
-/// Keeps the influence table, so many problems on the same grid share it; `solve_next`
-/// also keeps the last contact set and its factorisation for a sequence of problems.
+/// Keeps the influence table (shared by copies); the state of a sequence of problems lives
+/// in a NormWorkspace: `solve(h, loading, workspace)` starts from its contact set and reuses
+/// its factorisation while the set is unchanged. The answer does not depend on the start.
 ///
 /// **Example**
 /// @code
@@ -33,66 +69,51 @@ namespace fastnorm {
 /// if (solution.status == fastnorm::Status::converged) use(solution.pressure);
 /// @endcode
 template <typename Scalar = double>
-class NormSolver {
+class NormSolver : public detail::SolverBase<NormSolver<Scalar>, NormWorkspace<Scalar>, Scalar> {
  public:
   using Index = Eigen::Index;
   using Vector = Eigen::Matrix<Scalar, Eigen::Dynamic, 1>;
   using Matrix = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;
   using Options = ActiveSetOptions<Scalar>;
+  using Workspace = NormWorkspace<Scalar>;
+  using detail::SolverBase<NormSolver, Workspace, Scalar>::solve;
 
   /// @throws fastnorm::invalid_argument for invalid options
   NormSolver(const Grid<Scalar>& grid, const Material<Scalar>& material, Options options = {})
-      : influence_(grid, material), options_(options) {
+      : influence_(std::make_shared<const InfluenceTable<Scalar>>(grid, material)), options_(options) {
     options_.validate();
   }
 
-  const Grid<Scalar>& grid() const { return influence_.grid(); }
-  const InfluenceTable<Scalar>& influence() const { return influence_; }
+  const Grid<Scalar>& grid() const { return influence_->grid(); }
+  const InfluenceTable<Scalar>& influence() const { return *influence_; }
   const Options& options() const { return options_; }
 
-  /// Solves the Signorini problem g = h − δ + C p ≥ 0, p ≥ 0, g·p = 0.
+  /// Solves the Signorini problem g = h − δ + C p ≥ 0, p ≥ 0, g·p = 0 from the workspace's
+  /// starting set (Kalker's start if empty) and leaves the contact set there.
   /// @param undeformed_distance h on every element (m, + = gap), grid.size() values
   /// @param loading approach control (δ = 0) or force control (δ found from Fn)
-  /// @throws fastnorm::invalid_argument for wrong sizes or non-finite h
-  Solution<Scalar> solve(const Eigen::Ref<const Vector>& undeformed_distance,
-                         const Loading<Scalar>& loading) const {
-    auto workspace = cold_workspaces_->take();  // its storage, not its factorisation
-    workspace->factorisation.valid = false;
-    DenseSetSolver set_solver{influence_, workspace->factorisation};
-    return detail::solve_active_set(influence_, undeformed_distance, loading, options_, set_solver,
-                                    workspace->loop);
-  }
-
-  /// As solve, for the next problem of a sequence on this grid: starts from the contact set
-  /// of the previous solve_next (cold on the first call and after reset()) and reuses its
-  /// factorisation while the set is unchanged. The answer is solve's (docs/performance.md §4).
-  Solution<Scalar> solve_next(const Eigen::Ref<const Vector>& undeformed_distance, const Loading<Scalar>& loading) {
-    DenseSetSolver set_solver{influence_, memory_};
-    Solution<Scalar> solution = detail::solve_active_set(influence_, undeformed_distance, loading, options_,
-                                                         set_solver, workspace_, last_set_);
-    detail::contact_set(solution, last_set_);
+  /// @throws fastnorm::invalid_argument for wrong sizes, non-finite h, a bad Fn or a bad
+  ///         starting set
+  Solution<Scalar> solve(const Eigen::Ref<const Vector>& undeformed_distance, const Loading<Scalar>& loading,
+                         Workspace& workspace) const {
+    workspace.start_.check(grid().size());
+    if (workspace.factorisation_.table != influence_.get()) {
+      workspace.factorisation_.valid = false;
+      workspace.factorisation_.table = influence_.get();
+    }
+    DenseSetSolver set_solver{*influence_, workspace.factorisation_};
+    Solution<Scalar> solution = detail::solve_active_set(*influence_, undeformed_distance, loading, options_,
+                                                         set_solver, workspace.loop_, workspace.start_.contact_set());
+    workspace.start_.remember_set(solution);
     return solution;
   }
 
-  /// Forgets the previous contact set and factorisation: the next solve_next starts cold.
-  void reset() {
-    last_set_.clear();
-    memory_.valid = false;
-  }
-
  private:
-  /// The Cholesky factor of C_II for the set I last solved (valid after a solve).
-  struct Factorisation {
-    std::vector<Index> set;
-    bool valid = false;
-    detail::InPlaceCholesky<Scalar> cholesky;
-  };
-
   /// Step 2 of NORM: C_II p = rhs with Eigen's Cholesky of the dense block, in storage
   /// reused from one set to the next.
   struct DenseSetSolver {
     const InfluenceTable<Scalar>& influence;
-    Factorisation& factorisation;
+    typename Workspace::Factorisation& factorisation;
     bool solve(const std::vector<Index>& active, Eigen::Ref<Matrix> columns) {
       if (!factorisation.valid || active != factorisation.set) {
         factorisation.set = active;
@@ -110,20 +131,8 @@ class NormSolver {
     }
   };
 
-  struct ColdWorkspace {
-    Factorisation factorisation;
-    detail::ActiveSetWorkspace<Scalar> loop;
-  };
-
-  InfluenceTable<Scalar> influence_;
+  std::shared_ptr<const InfluenceTable<Scalar>> influence_;
   Options options_;
-  // Workspaces of solve (one per concurrent call), shared by copies of the solver.
-  std::shared_ptr<detail::WorkspacePool<ColdWorkspace>> cold_workspaces_ =
-      std::make_shared<detail::WorkspacePool<ColdWorkspace>>();
-  // The sequence of solve_next.
-  std::vector<Index> last_set_;
-  Factorisation memory_;
-  detail::ActiveSetWorkspace<Scalar> workspace_;
 };
 
 }  // namespace fastnorm

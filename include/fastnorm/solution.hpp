@@ -35,6 +35,7 @@ struct Loading {
 
 /// How a solve ended. Bad input is not a status: it throws fastnorm::invalid_argument.
 enum class Status {
+  not_solved,       ///< a default-constructed Solution: no solver has filled it
   converged,        ///< the contact set is stable and the Signorini conditions hold
   no_contact,       ///< approach control with every gap positive: zero pressure
   iteration_limit,  ///< the active-set loop reached Options::max_iterations
@@ -45,6 +46,7 @@ enum class Status {
 
 inline const char* to_string(Status status) {
   switch (status) {
+    case Status::not_solved: return "not solved";
     case Status::converged: return "converged";
     case Status::no_contact: return "no contact";
     case Status::iteration_limit: return "iteration limit";
@@ -60,7 +62,7 @@ struct Solution {
   using Vector = Eigen::Matrix<Scalar, Eigen::Dynamic, 1>;
   using Mask = Eigen::Array<bool, Eigen::Dynamic, 1>;
 
-  Status status = Status::converged;
+  Status status = Status::not_solved;
   /// Pressure on every element of the grid (Pa), ≥ 0; zero outside contact.
   Vector pressure;
   /// Elements in the final contact set.
@@ -70,8 +72,15 @@ struct Solution {
   /// Rigid approach δ subtracted from the given h (m): found in force control; 0 in
   /// approach control, where h already contains it.
   Scalar approach = 0;
-  /// Active-set iterations (linear solves).
+  /// Active-set iterations (linear solves), or conjugate-gradient iterations.
   int iterations = 0;
+  /// How far the answer is from the Signorini conditions as the solver itself measured it,
+  /// relative to the deepest interpenetration of the undeformed surfaces, approach − min h
+  /// (docs/performance.md Eq. (P1)). CG: its complementarity error, max |g| where p > 0 and
+  /// max(−g) where p = 0. Active-set solvers: the largest interpenetration −g of the last
+  /// join check outside the set (their equations on the set are solved by a factorisation,
+  /// exactly for NORM, in the Galerkin sense for a reduced basis). 0 with no contact.
+  Scalar residual = 0;
   /// What happened, in words.
   std::string message;
 

@@ -2,7 +2,7 @@
 #include <fastnorm/bases.hpp>
 #include <fastnorm/influence.hpp>
 #include <fastnorm/reduced_solver.hpp>
-#include <fastnorm/segment_tables.hpp>
+#include <fastnorm/detail/segment_tables.hpp>
 
 #include <functional>
 

@@ -63,11 +63,12 @@ TEST_CASE("Solvers in a repeated sequence allocate only their results", "[sequen
   Eigen::VectorXd kept;
   REQUIRE(allocations_of([&] { kept.resize(10); }) == 1);  // the counter sees Eigen's allocations
 
-  for (const char* name : {"norm", "elliptic", "polynomial:4"}) {
+  for (const char* name : {"norm", "cg", "elliptic", "polynomial:4"}) {
     for (const auto& loading : {fastnorm::Loading<>::approach(), fastnorm::Loading<>::force(5e4)}) {
-      fastnorm::ActiveSetOptions<> options;
-      options.start_depth_fraction = 1;  // Kalker's start: elements leave over several iterations
-      fastnorm::AnySolver<> solver(name, grid, steel, options);
+      auto spec = fastnorm::SolverSpec<>::parse(name);
+      spec.active_set.start_depth_fraction = 1;  // Kalker's start: elements leave over several iterations
+      // (CG's pooled and sequence workspaces each hold their own FFT plans and vectors.)
+      fastnorm::AnySolver<> solver(spec, grid, steel);
       // A round: both problems warm and cold. The first rounds grow the storage to the
       // largest set, build the tables, and let every recycled assembly hold the largest
       // system; from then on a round allocates only its four results.

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <limits>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "fastnorm/error.hpp"
@@ -22,6 +23,24 @@ struct SearchOptions {
   double step = 0.05e-3;               ///< sampling of the wheel profile coordinate y_w
   double separation_distance = 8e-3;   ///< regions farther apart (rail points) stay separate patches
   double separation_angle = 0.5;       ///< ... as do regions whose mean inclinations differ by more
+  double roll_bracket = 0.02;          ///< rigid_contact_pose seeks the roll within ±this (rad)
+  double roll_tolerance = 1e-13;       ///< ... to this width of its bracket (rad)
+  int max_root_steps = 200;            ///< most steps of that search
+
+  /// @throws fastnorm::invalid_argument naming the offending field
+  void validate() const {
+    auto positive = [](double value, const char* what) {
+      FASTNORM_CHECK(std::isfinite(value) && value > 0,
+                     fastnorm::detail::describe(std::string("SearchOptions: ") + what + " must be positive", value));
+    };
+    positive(step, "step (m)");
+    positive(separation_distance, "separation_distance (m)");
+    positive(separation_angle, "separation_angle (rad)");
+    positive(roll_bracket, "roll_bracket (rad)");
+    positive(roll_tolerance, "roll_tolerance (rad)");
+    FASTNORM_CHECK(max_root_steps >= 1,
+                   fastnorm::detail::describe("SearchOptions: max_root_steps must be >= 1", max_root_steps));
+  }
 };
 
 /// The gap at one locus point.
@@ -59,8 +78,7 @@ inline GapSample gap_at(const Track& track, const Wheelset& wheelset, Side side,
 /// The gap sampled every `options.step` over the wheel profile.
 inline std::vector<GapSample> sample_gap(const Track& track, const Wheelset& wheelset, Side side,
                                          const WheelsetPose& pose, const SearchOptions& options = {}) {
-  FASTNORM_CHECK(std::isfinite(options.step) && options.step > 0,
-                 fastnorm::detail::describe("SearchOptions: step must be positive (m)", options.step));
+  options.validate();
   const auto& profile = wheelset.profile();
   const auto count = static_cast<std::size_t>(std::ceil((profile.y_max - profile.y_min) / options.step));
   const Eigen::Matrix3d rotation = Wheelset::rotation(pose);
@@ -169,22 +187,22 @@ inline std::vector<ContactRegion> contact_regions(const Track& track, const Whee
 /// lateral shift y and yaw: the roll that equalises the two smallest gaps, then the drop.
 inline WheelsetPose rigid_contact_pose(const Track& track, const Wheelset& wheelset, double y, double yaw,
                                        const SearchOptions& options = {}) {
-  FASTNORM_CHECK(std::isfinite(y), fastnorm::detail::describe("rigid_contact_pose: y must be finite (m)", y));
-  FASTNORM_CHECK(std::isfinite(yaw) && std::abs(yaw) < 0.2,
-                 fastnorm::detail::describe("rigid_contact_pose: yaw must lie in (-0.2, 0.2) rad", yaw));
   WheelsetPose pose{y, 0, 0, yaw};
+  check_pose(pose, "rigid_contact_pose");
+  options.validate();
   auto imbalance = [&](double roll) {
     pose.roll = roll;
     return smallest_gap(track, wheelset, Side::right, pose, options).gap -
            smallest_gap(track, wheelset, Side::left, pose, options).gap;
   };
   // Roll > 0 lowers the right wheel: the imbalance falls with roll. Illinois regula falsi.
-  double low = -0.02, high = 0.02, f_low = imbalance(low), f_high = imbalance(high);
+  double low = -options.roll_bracket, high = options.roll_bracket, f_low = imbalance(low), f_high = imbalance(high);
   FASTNORM_CHECK(f_low > 0 && f_high < 0,
-                 fastnorm::detail::describe("rigid_contact_pose: no roll within ±0.02 rad puts both wheels on "
-                                            "their rails at this lateral shift (m)", y));
+                 fastnorm::detail::describe("rigid_contact_pose: no roll within ±" + fastnorm::detail::to_text(options.roll_bracket) +
+                                                " rad puts both wheels on their rails at this lateral shift (m)",
+                                            y));
   int side_kept = 0;
-  for (int step = 0; step < 200 && high - low > 1e-13; ++step) {
+  for (int step = 0; step < options.max_root_steps && high - low > options.roll_tolerance; ++step) {
     const double roll = (low * f_high - high * f_low) / (f_high - f_low);
     const double f = imbalance(roll);
     if (f == 0) {

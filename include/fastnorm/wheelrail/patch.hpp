@@ -21,6 +21,23 @@ struct PatchGridOptions {
   Eigen::Index elements = 60;  ///< elements across the largest region, each direction
   double element_length = 0;   ///< dx, rolling direction (0: from `elements`)
   double element_width = 0;    ///< ds, lateral in the tangent plane (0: from `elements`)
+
+  /// @throws fastnorm::invalid_argument naming the offending field
+  void validate() const {
+    FASTNORM_CHECK(elements >= 4, fastnorm::detail::describe("PatchGridOptions: elements must be >= 4", elements));
+    FASTNORM_CHECK(std::isfinite(element_length) && element_length >= 0,
+                   fastnorm::detail::describe("PatchGridOptions: element_length must be >= 0 (m)", element_length));
+    FASTNORM_CHECK(std::isfinite(element_width) && element_width >= 0,
+                   fastnorm::detail::describe("PatchGridOptions: element_width must be >= 0 (m)", element_width));
+  }
+};
+
+/// Where undeformed_distance looks for the wheel surface along the normal line through a
+/// rail point (m, + into the rail): wheelset-geometry.md §4.
+struct NormalSearch {
+  static constexpr double below = -0.020;  ///< farthest out of the rail
+  static constexpr double above = 0.005;   ///< farthest into it
+  static constexpr double tolerance = 1e-13;
 };
 
 /// Where and how a patch lies: reference point on the rail, inclination, grid.
@@ -80,13 +97,13 @@ inline Eigen::VectorXd undeformed_distance(const Track& track, const Wheelset& w
             distance - rho.value,
             (p.x() * normal_in_wheelset.x() + p.z() * normal_in_wheelset.z()) / distance - rho.slope * normal_in_wheelset.y()};
       };
-      const double low = -0.020, high = 0.005;  // bracket of t (m), wheelset-geometry.md §4
+      const double low = NormalSearch::below, high = NormalSearch::above;
       const double at_low = radial_excess(low).value, at_high = radial_excess(high).value;
       if (!rail || off_profile || (at_low < 0) == (at_high < 0)) {
         h(grid.index(i, j)) = no_surface_gap;
         continue;
       }
-      const double wheel = detail::bracketed_root(radial_excess, low, high, guess, 1e-13);
+      const double wheel = detail::bracketed_root(radial_excess, low, high, guess, NormalSearch::tolerance);
       if (off_profile) {
         h(grid.index(i, j)) = no_surface_gap;
         continue;
@@ -142,12 +159,7 @@ inline Grid<double> patch_grid(const PatchExtent& extent, double dx, double ds) 
 
 /// Element sizes for a set of regions: the user's, or the largest extent over `elements`.
 inline std::pair<double, double> element_sizes(const std::vector<PatchExtent>& extents, const PatchGridOptions& options) {
-  FASTNORM_CHECK(options.elements >= 4,
-                 fastnorm::detail::describe("PatchGridOptions: elements must be >= 4", options.elements));
-  FASTNORM_CHECK(std::isfinite(options.element_length) && options.element_length >= 0,
-                 fastnorm::detail::describe("PatchGridOptions: element_length must be >= 0 (m)", options.element_length));
-  FASTNORM_CHECK(std::isfinite(options.element_width) && options.element_width >= 0,
-                 fastnorm::detail::describe("PatchGridOptions: element_width must be >= 0 (m)", options.element_width));
+  options.validate();
   double length = 0, width = 0;
   for (const auto& extent : extents) {
     length = std::max(length, extent.x_high - extent.x_low);

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <optional>
+#include <string>
 
 #include "fastnorm/error.hpp"
 #include "fastnorm/wheelrail/profile_curve.hpp"
@@ -23,6 +24,31 @@ struct WheelsetPose {
   double roll = 0;  ///< rotation about x_track
   double yaw = 0;   ///< rotation about the rolled z axis
 };
+
+/// The poses the wheel–rail functions accept (m, rad), one set for all of them: beyond
+/// these the small-angle contact locus (wheelset-geometry.md §3) and the profile ranges no
+/// longer hold. A pose outside is rejected by name, never solved.
+struct PoseLimits {
+  static constexpr double lateral_shift = 0.03;  ///< |y|
+  static constexpr double vertical = 0.05;       ///< |z|
+  static constexpr double roll = 0.05;           ///< |roll|
+  static constexpr double yaw = 0.1;             ///< |yaw|
+};
+
+/// @throws fastnorm::invalid_argument naming the coordinate of `pose` that is not finite or
+///         outside PoseLimits; `what` names the caller
+inline void check_pose(const WheelsetPose& pose, const std::string& what) {
+  auto check = [&](double value, double limit, const char* name, const char* unit) {
+    FASTNORM_CHECK(std::isfinite(value) && std::abs(value) < limit,
+                   fastnorm::detail::describe(what + ": " + name + " must lie within ±" + fastnorm::detail::to_text(limit) + " " +
+                                                  unit,
+                                              value));
+  };
+  check(pose.y, PoseLimits::lateral_shift, "y", "m");
+  check(pose.z, PoseLimits::vertical, "z", "m");
+  check(pose.roll, PoseLimits::roll, "roll", "rad");
+  check(pose.yaw, PoseLimits::yaw, "yaw", "rad");
+}
 
 /// Dimensions of the wheelset (m).
 struct WheelsetLayout {

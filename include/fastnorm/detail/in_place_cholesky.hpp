@@ -1,5 +1,5 @@
 #pragma once
-/// @file in_place_cholesky.hpp
+/// @file detail/in_place_cholesky.hpp
 /// A symmetric positive definite system factorised by Eigen's LLT in place, in storage
 /// that keeps its capacity (scratch_matrix.hpp): the active-set loop's systems change
 /// size every iteration and this one stops allocating once it has met the largest.
@@ -7,7 +7,7 @@
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
 
-#include "fastnorm/scratch_matrix.hpp"
+#include "fastnorm/detail/scratch_matrix.hpp"
 
 namespace fastnorm {
 namespace detail {

@@ -1,9 +1,10 @@
 #pragma once
-/// @file workspace_pool.hpp
-/// Workspaces lent to the const solve of a solver: a solve that may run on several threads
-/// at once cannot use one member workspace, and a fresh one per call pays the allocation
-/// (and for large systems the page faults) every call. The pool hands each concurrent call
-/// its own and keeps them for later calls (docs/performance.md §3).
+/// @file detail/workspace_pool.hpp
+/// Workspaces lent to the cold `solve(h, loading)` of a solver (solver_base.hpp): a call
+/// that may run on several threads at once cannot use one member workspace, and a fresh one
+/// per call pays the allocation (and for large systems the page faults) every call. The
+/// pool hands each concurrent call its own and keeps them for later calls
+/// (docs/performance.md §3). A copy of a pool is empty: workspaces are never shared.
 
 #include <memory>
 #include <mutex>
@@ -15,6 +16,11 @@ namespace detail {
 template <typename Workspace>
 class WorkspacePool {
  public:
+  WorkspacePool() = default;
+  WorkspacePool(const WorkspacePool&) {}
+  WorkspacePool& operator=(const WorkspacePool&) { return *this; }
+  ~WorkspacePool() = default;
+
   /// A workspace for the duration of one call; back to the pool when it goes out of scope.
   class Lease {
    public:

@@ -1,5 +1,5 @@
 #pragma once
-/// @file segment_tables.hpp
+/// @file detail/segment_tables.hpp
 /// The tables that make a reduced solver fast, built once per solver because they do not
 /// depend on h (docs/method.md §3):
 ///

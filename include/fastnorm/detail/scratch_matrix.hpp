@@ -1,5 +1,5 @@
 #pragma once
-/// @file scratch_matrix.hpp
+/// @file detail/scratch_matrix.hpp
 /// Workspace matrices that keep their storage: an Eigen matrix gives its memory back
 /// whenever its size changes, and the systems of the active-set loop change size every
 /// iteration; this storage only grows, so a loop that reuses it stops allocating once it

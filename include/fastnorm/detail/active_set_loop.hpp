@@ -1,0 +1,244 @@
+#pragma once
+/// @file detail/active_set_loop.hpp
+/// The active-set loop shared by NORM and the reduced solvers (docs/norm.md §1): NORM
+/// solves each set exactly, the reduced solvers in a small basis; the loop around them is
+/// this one.
+
+#include <Eigen/Core>
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "fastnorm/detail/scratch_matrix.hpp"
+#include "fastnorm/detail/solver_input.hpp"
+#include "fastnorm/error.hpp"
+#include "fastnorm/influence.hpp"
+#include "fastnorm/solution.hpp"
+#include "fastnorm/solver_options.hpp"
+
+namespace fastnorm {
+namespace detail {
+
+/// Everything the active-set loop touches between iterations. Kept in a solver's workspace
+/// across the problems of a sequence, it stops allocating once it has grown to the largest
+/// set met: the loop itself allocates nothing then (docs/performance.md §3).
+template <typename Scalar>
+struct ActiveSetWorkspace {
+  using Index = Eigen::Index;
+  std::vector<Index> active, kept, candidates, joining, admissible_set;
+  std::vector<Index> visited_elements;   // every set of this solve, one after the other
+  std::vector<std::size_t> visited_ends;  // where each ends in visited_elements
+  ScratchMatrix<Scalar> columns;          // right-hand sides in, pressures out (n × 1 or n × 2)
+  ScratchMatrix<Scalar> displacement;     // at the candidates
+  std::vector<Scalar> admissible_pressure;
+  std::vector<Scalar> sorted_distance;    // of the force-control starting guess
+  std::vector<char> is_active;            // per element of the grid
+
+  /// True if `set` came up before in this solve; records it otherwise.
+  bool seen_before(const std::vector<Index>& set) {
+    std::size_t begin = 0;
+    for (const std::size_t end : visited_ends) {
+      if (end - begin == set.size() &&
+          std::equal(set.begin(), set.end(), visited_elements.begin() + static_cast<std::ptrdiff_t>(begin))) {
+        return true;
+      }
+      begin = end;
+    }
+    visited_elements.insert(visited_elements.end(), set.begin(), set.end());
+    visited_ends.push_back(visited_elements.size());
+    return false;
+  }
+};
+
+/// One run of the active-set loop of docs/norm.md §1 around a solver of the problem
+/// restricted to a set. `set_solver.solve(active, columns)` receives the sorted element
+/// numbers of the set and, in `columns`, right-hand sides over it (n × 1: −h_I; n × 2 in
+/// force control: −h0_I and 1), which it overwrites with the pressures on the set for each
+/// column; it returns false if its factorisation failed. `set_solver.displacement(targets,
+/// active, p, u)` then writes u = C_TI p for pressures p on that set (the join check of
+/// step 4; a solver may use what it knows of p, e.g. that it lies in its basis).
+///
+/// Cycles are ended deterministically: when a set comes back, the loop stops with
+/// Status::cycled and the last set whose pressures were all positive. (A cycle contains a
+/// join, and joins follow only such a set, so one exists; docs/method.md §3.)
+template <typename Scalar, typename SetSolver>
+class ActiveSetLoop {
+ public:
+  using Index = Eigen::Index;
+  using Vector = Eigen::Matrix<Scalar, Eigen::Dynamic, 1>;
+
+  ActiveSetLoop(const InfluenceTable<Scalar>& influence, const Eigen::Ref<const Vector>& h,
+                const Loading<Scalar>& loading, const ActiveSetOptions<Scalar>& options, SetSolver& set_solver,
+                ActiveSetWorkspace<Scalar>& work)
+      : influence_(influence), h_(h), loading_(loading), options_(options), set_solver_(set_solver), work_(work) {}
+
+  /// Runs the loop from `start_set` (sorted element numbers), or from step 1's set if empty.
+  Solution<Scalar> run(const std::vector<Index>& start_set) {
+    const Index n_all = influence_.grid().size();
+    solution_.pressure = Vector::Zero(n_all);
+    solution_.in_contact = Solution<Scalar>::Mask::Constant(n_all, false);
+    if (!choose_start(start_set)) return finish(Status::no_contact, "no element has a negative undeformed distance");
+    work_.visited_elements.clear();
+    work_.visited_ends.clear();
+    work_.admissible_set.clear();  // last set with all pressures positive
+    work_.is_active.assign(static_cast<std::size_t>(n_all), 0);
+    while (solution_.iterations < options_.max_iterations) {
+      if (work_.seen_before(work_.active)) {
+        FASTNORM_ASSERT(!work_.admissible_set.empty());
+        store(work_.admissible_set, work_.admissible_pressure.data(), admissible_approach_);
+        return finish(Status::cycled, "active set cycled; returned the last set with positive pressures");
+      }
+      ++solution_.iterations;
+      if (!solve_on_set()) return finish(Status::numerical_issue, "factorisation of the system on the active set failed");
+      if (drop_non_positive()) {
+        if (solution_.iterations == options_.max_iterations) break;  // report this iterate
+        work_.active.swap(work_.kept);
+        continue;
+      }
+      remember_admissible();
+      find_joining();
+      if (work_.joining.empty()) {
+        store(work_.active, work_.columns.view().data(), approach_);
+        return finish(Status::converged, "contact set stable");
+      }
+      if (solution_.iterations == options_.max_iterations) break;  // report this iterate
+      join();
+    }
+    // The last iterate, its negative pressures clipped, so the caller can inspect it.
+    store(work_.active, work_.columns.view().data(), approach_);
+    return finish(Status::iteration_limit,
+                  "active set still changing after " + std::to_string(solution_.iterations) + " iterations");
+  }
+
+ private:
+  bool force_control() const { return loading_.control == Control::force; }
+
+  /// Step 1 (docs/norm.md §2): the first approach and set; false if nothing touches.
+  bool choose_start(const std::vector<Index>& start_set) {
+    deepest_ = h_.minCoeff();
+    join_below_ = -options_.gap_tolerance * h_.cwiseAbs().maxCoeff();
+    if (force_control()) {
+      approach_ = approach_guess(h_, influence_.grid().element_area(), influence_.combined_modulus(),
+                                 loading_.normal_force, work_.sorted_distance);
+    } else if (deepest_ >= 0) {
+      return false;
+    }
+    const Scalar start_below = approach_ + options_.start_depth_fraction * (deepest_ - approach_);
+    work_.active = start_set;
+    if (work_.active.empty()) {
+      for (Index k = 0; k < h_.size(); ++k) {
+        if (h_(k) <= start_below) work_.active.push_back(k);
+      }
+    }
+    return true;
+  }
+
+  /// Step 2: pressures on the set (columns.col(0) afterwards), and δ in force control.
+  bool solve_on_set() {
+    const auto n = static_cast<Index>(work_.active.size());
+    auto columns = work_.columns.resize(n, force_control() ? 2 : 1);
+    for (Index r = 0; r < n; ++r) columns(r, 0) = -h_(work_.active[static_cast<std::size_t>(r)]);
+    if (force_control()) columns.col(1).setOnes();
+    if (!set_solver_.solve(work_.active, columns)) return false;
+    if (force_control()) {
+      // p = p_a + δ p_b with δ from dx·dy·Σp = Fn (docs/design.md §3).
+      approach_ = (loading_.normal_force / influence_.grid().element_area() - columns.col(0).sum()) /
+                  columns.col(1).sum();
+      columns.col(0) += approach_ * columns.col(1);
+    }
+    return true;
+  }
+
+  /// Step 3: the elements with positive pressure go to `kept`; true if any other left.
+  bool drop_non_positive() {
+    const auto pressure = work_.columns.view().col(0);
+    work_.kept.clear();
+    for (Index r = 0; r < pressure.size(); ++r) {
+      if (pressure(r) > 0) work_.kept.push_back(work_.active[static_cast<std::size_t>(r)]);
+    }
+    return static_cast<Index>(work_.kept.size()) < pressure.size();
+  }
+
+  void remember_admissible() {
+    const auto pressure = work_.columns.view().col(0);
+    work_.admissible_set = work_.active;
+    work_.admissible_pressure.assign(pressure.data(), pressure.data() + pressure.size());
+    admissible_approach_ = approach_;
+  }
+
+  /// Step 4: elements outside the set with negative deformed gap, into `joining`. C p ≥ 0,
+  /// so only elements with h − δ < 0 can have g < 0: only those are checked. Records the
+  /// deepest interpenetration found as the residual.
+  void find_joining() {
+    for (Index k : work_.active) work_.is_active[static_cast<std::size_t>(k)] = 1;
+    work_.candidates.clear();
+    for (Index k = 0; k < h_.size(); ++k) {
+      if (!work_.is_active[static_cast<std::size_t>(k)] && h_(k) - approach_ < join_below_) {
+        work_.candidates.push_back(k);
+      }
+    }
+    for (Index k : work_.active) work_.is_active[static_cast<std::size_t>(k)] = 0;
+    auto displacement = work_.displacement.resize(static_cast<Index>(work_.candidates.size()), 1).col(0);
+    set_solver_.displacement(work_.candidates, work_.active, work_.columns.view().col(0), displacement);
+    work_.joining.clear();
+    Scalar deepest_gap = 0;
+    for (std::size_t t = 0; t < work_.candidates.size(); ++t) {
+      const Scalar gap = h_(work_.candidates[t]) - approach_ + displacement(static_cast<Index>(t));
+      deepest_gap = std::min(deepest_gap, gap);
+      if (gap < join_below_) work_.joining.push_back(work_.candidates[t]);
+    }
+    residual_ = std::max(Scalar(0), -deepest_gap) / (approach_ - deepest_);
+  }
+
+  void join() {
+    auto& active = work_.active;
+    active.insert(active.end(), work_.joining.begin(), work_.joining.end());
+    std::inplace_merge(active.begin(), active.end() - static_cast<std::ptrdiff_t>(work_.joining.size()), active.end());
+  }
+
+  /// The pressures `pressure` on `set` (negative ones clipped) as the answer.
+  void store(const std::vector<Index>& set, const Scalar* pressure, Scalar approach) {
+    solution_.pressure.setZero();
+    solution_.in_contact.setConstant(false);
+    for (std::size_t r = 0; r < set.size(); ++r) {
+      const Scalar value = std::max(pressure[r], Scalar(0));
+      solution_.pressure(set[r]) = value;
+      solution_.in_contact(set[r]) = value > 0;
+    }
+    solution_.approach = approach;
+    solution_.normal_force = influence_.grid().element_area() * solution_.pressure.sum();
+  }
+
+  Solution<Scalar> finish(Status status, std::string message) {
+    solution_.status = status;
+    solution_.message = std::move(message);
+    solution_.residual = residual_;
+    return std::move(solution_);
+  }
+
+  const InfluenceTable<Scalar>& influence_;
+  const Eigen::Ref<const Vector>& h_;
+  const Loading<Scalar>& loading_;
+  const ActiveSetOptions<Scalar>& options_;
+  SetSolver& set_solver_;
+  ActiveSetWorkspace<Scalar>& work_;
+  Solution<Scalar> solution_;
+  Scalar deepest_ = 0, join_below_ = 0, approach_ = 0, admissible_approach_ = 0, residual_ = 0;
+};
+
+/// Checks the problem and runs the loop (see ActiveSetLoop) from `start_set`, or cold if it
+/// is empty.
+/// @throws fastnorm::invalid_argument for wrong sizes or non-finite h, or a bad Fn
+template <typename Scalar, typename SetSolver>
+Solution<Scalar> solve_active_set(const InfluenceTable<Scalar>& influence,
+                                  const Eigen::Ref<const Eigen::Matrix<Scalar, Eigen::Dynamic, 1>>& h,
+                                  const Loading<Scalar>& loading, const ActiveSetOptions<Scalar>& options,
+                                  SetSolver& set_solver, ActiveSetWorkspace<Scalar>& work,
+                                  const std::vector<Eigen::Index>& start_set) {
+  check_problem(influence.grid(), h, loading);
+  return ActiveSetLoop<Scalar, SetSolver>(influence, h, loading, options, set_solver, work).run(start_set);
+}
+
+}  // namespace detail
+}  // namespace fastnorm

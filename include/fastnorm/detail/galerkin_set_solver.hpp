@@ -1,0 +1,304 @@
+#pragma once
+/// @file detail/galerkin_set_solver.hpp
+/// Step 2 of the reduced strip-basis solvers on one set (docs/method.md §1–3): the Galerkin
+/// system (Aᵀ C_II A) α = Aᵀ rhs assembled from the influence and segment tables, solved by
+/// Cholesky, p_I = A α; and the join check's displacements from the basis coefficients.
+
+#include <Eigen/Core>
+#include <Eigen/QR>
+#include <algorithm>
+#include <vector>
+
+#include "fastnorm/detail/in_place_cholesky.hpp"
+#include "fastnorm/detail/scratch_matrix.hpp"
+#include "fastnorm/detail/segment_tables.hpp"
+#include "fastnorm/error.hpp"
+#include "fastnorm/influence.hpp"
+#include "fastnorm/strips.hpp"
+
+namespace fastnorm {
+namespace detail {
+
+/// What a Galerkin set solver keeps: the basis blocks per segment length, the assemblies of
+/// Aᵀ C_II A with their Cholesky factors for the sets of the current solve and of the
+/// previous one, and the workspace of one set. All
+/// of it keeps its storage (assemblies no longer needed wait in `spare`), so the loop stops
+/// allocating once it has met its largest set (docs/performance.md §3).
+template <typename Scalar>
+struct GalerkinMemory {
+  using Index = Eigen::Index;
+  using Matrix = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;
+  struct Assembly {
+    std::vector<Segment> segments;
+    std::vector<Index> offsets;      // first unknown of each segment
+    ScratchMatrix<Scalar> matrix;    // Aᵀ C_II A, lower triangle filled
+    InPlaceCholesky<Scalar> cholesky;
+    Index unknowns() const { return matrix.rows(); }
+  };
+  std::vector<Matrix> blocks;       // basis block per segment element count
+  std::vector<Matrix> projections;  // its pseudo-inverse, per count (α from p = A α)
+  std::vector<Assembly> path;       // the sets of this solve
+  std::vector<Assembly> last_path;  // the sets of the previous solve of a sequence
+  std::vector<Assembly> spare;      // storage to reuse
+  // Workspace of one set.
+  std::vector<Segment> segments, target_runs;
+  std::vector<Index> old_index;
+  std::vector<std::size_t> direct;
+  ScratchMatrix<Scalar> coupling, times_basis, block_entries, reduced_rhs, coefficients;
+
+  /// An assembly to fill: the spare one with the most storage, so that storage grows only
+  /// when more systems of the largest size are needed at once than ever before.
+  Assembly take_spare() {
+    if (spare.empty()) return Assembly();
+    const auto largest = std::max_element(spare.begin(), spare.end(), [](const Assembly& a, const Assembly& b) {
+      return a.matrix.capacity() < b.matrix.capacity();
+    });
+    Assembly assembly = std::move(*largest);
+    *largest = std::move(spare.back());
+    spare.pop_back();
+    return assembly;
+  }
+  void recycle(std::vector<Assembly>& assemblies) {
+    for (Assembly& assembly : assemblies) spare.push_back(std::move(assembly));
+    assemblies.clear();
+  }
+  /// Before a solve: the previous solve's sets become the ones to look up.
+  void next_problem() {
+    recycle(last_path);
+    std::swap(last_path, path);
+  }
+};
+
+/// Step 2 of the reduced method on one set: segments, basis blocks, Galerkin matrix
+/// assembled by pairs of segments from the Toeplitz table, solve, expansion. Blocks between
+/// segments that did not change since the previous set are copied, not recomputed; a set
+/// already assembled in the previous solve of a sequence reuses that assembly and its
+/// factorisation (docs/method.md §3, docs/performance.md §3).
+template <typename Basis, typename Scalar>
+class GalerkinSetSolver {
+ public:
+  using Index = Eigen::Index;
+  using Matrix = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;
+  using Memory = GalerkinMemory<Scalar>;
+  using Assembly = typename Memory::Assembly;
+
+  GalerkinSetSolver(const InfluenceTable<Scalar>& influence, const Basis& basis,
+                    SegmentTables<Scalar>& tables, Memory& memory)
+      : influence_(influence), basis_(basis), tables_(tables), memory_(memory) {}
+
+  /// The set solver of solve_active_set: right-hand sides over `active` in, pressures out.
+  bool solve(const std::vector<Index>& active, Eigen::Ref<Matrix> columns) {
+    segment_strips(influence_.grid(), active, memory_.segments);
+    auto& last_path = memory_.last_path;
+    const auto known = std::find_if(last_path.begin(), last_path.end(), [&](const Assembly& assembly) {
+      return assembly.segments == memory_.segments;
+    });
+    Assembly next;
+    if (known != last_path.end()) {
+      next = std::move(*known);
+      last_path.erase(known);
+    } else {
+      next = memory_.take_spare();
+      next.segments.assign(memory_.segments.begin(), memory_.segments.end());
+      next.offsets.clear();
+      Index unknowns = 0;
+      for (const Segment& segment : next.segments) {
+        next.offsets.push_back(unknowns);
+        unknowns += unknowns_of(segment.count);
+      }
+      next.matrix.resize(unknowns, unknowns);
+      // Blocks are copied from the set solved just before (or last, in the previous solve).
+      const Assembly* previous = !memory_.path.empty() ? &memory_.path.back()
+                                 : !last_path.empty()  ? &last_path.back()
+                                                       : nullptr;
+      assemble(next, previous);
+      next.cholesky.resize(unknowns);
+      next.cholesky.matrix().template triangularView<Eigen::Lower>() = next.matrix.view();
+      next.cholesky.factorise();
+    }
+    memory_.path.push_back(std::move(next));
+    const Assembly& assembly = memory_.path.back();
+
+    // Right-hand sides Aᵀ rhs, segment by segment; solved in place into the coefficients α.
+    auto coefficients = memory_.reduced_rhs.resize(assembly.unknowns(), columns.cols());
+    for (std::size_t s = 0; s < assembly.segments.size(); ++s) {
+      const Segment& segment = assembly.segments[s];
+      const auto rows = columns.middleRows(segment.set_position, segment.count);
+      auto target = coefficients.middleRows(assembly.offsets[s], unknowns_of(segment.count));
+      if (is_identity(segment.count)) target = rows; else target.noalias() = basis_of(segment.count).transpose() * rows;
+    }
+    if (assembly.cholesky.factored()) {
+      assembly.cholesky.solve_in_place(coefficients);
+    } else {
+      // A without full column rank makes Aᵀ C A singular: take the minimum-norm solution
+      // (rare; this path allocates).
+      const Matrix full = assembly.matrix.view().template selfadjointView<Eigen::Lower>();
+      const Eigen::CompleteOrthogonalDecomposition<Matrix> decomposition(full);
+      const Matrix minimum_norm = decomposition.solve(Matrix(coefficients));
+      if (!minimum_norm.allFinite()) return false;
+      coefficients = minimum_norm;
+    }
+
+    // Pressures p_I = A α.
+    for (std::size_t s = 0; s < assembly.segments.size(); ++s) {
+      const Segment& segment = assembly.segments[s];
+      const auto alpha = coefficients.middleRows(assembly.offsets[s], unknowns_of(segment.count));
+      auto target = columns.middleRows(segment.set_position, segment.count);
+      if (is_identity(segment.count)) target = alpha; else target.noalias() = basis_of(segment.count) * alpha;
+    }
+    return true;
+  }
+
+  /// The join check of solve_active_set: u_t = Σ_s C_ts p_s at the elements `targets` for
+  /// pressures `pressure` on the set just solved (`active`), which lie in the span of the
+  /// basis. Per source segment, α = A⁺ p and each sorted run of targets in a strip takes q
+  /// slices of the displacement table (Eq. (M3)); without a table, n_s slices of the
+  /// influence table.
+  void displacement(const std::vector<Index>& targets, const std::vector<Index>& /*active: its segments are known*/,
+                    const Eigen::Ref<const Eigen::Matrix<Scalar, Eigen::Dynamic, 1>>& pressure,
+                    Eigen::Ref<Eigen::Matrix<Scalar, Eigen::Dynamic, 1>> result) {
+    FASTNORM_ASSERT(!memory_.path.empty());
+    const Assembly& assembly = memory_.path.back();
+    FASTNORM_ASSERT(assembly.segments.empty() ||
+                    pressure.size() == assembly.segments.back().set_position + assembly.segments.back().count);
+    const Index mx = influence_.grid().mx(), my = influence_.grid().my();
+    segment_strips(influence_.grid(), targets, memory_.target_runs);
+    result.setZero();
+    auto block_of_count = [this](Index count) { return block_of(count); };
+    for (const Segment& source : assembly.segments) {
+      const auto source_pressure = pressure.segment(source.set_position, source.count);
+      const Matrix* table =
+          is_identity(source.count) ? nullptr : tables_.displacement(source.count, block_of_count, influence_);
+      if (table != nullptr) {
+        auto alpha = memory_.coefficients.resize(basis_.unknowns(), 1);  // q ≤ n_s here
+        alpha.noalias() = projection_of(source.count) * source_pressure;
+        for (const Segment& run : memory_.target_runs) {
+          const Index row = run.first - source.first + mx - source.count, dj = std::abs(run.strip - source.strip);
+          auto displacement = result.segment(run.set_position, run.count);
+          for (Index b = 0; b < alpha.rows(); ++b) {
+            displacement += alpha(b) * table->col(b * my + dj).segment(row, run.count);
+          }
+        }
+      } else {
+        for (const Segment& run : memory_.target_runs) {
+          auto displacement = result.segment(run.set_position, run.count);
+          for (Index m = 0; m < source.count; ++m) {
+            displacement +=
+                source_pressure(m) * influence_.run(run.first - source.first - m, run.strip - source.strip, run.count);
+          }
+        }
+      }
+    }
+  }
+
+ private:
+  /// A segment with no more elements than the basis has functions keeps one unknown per
+  /// element (identity block), as the paper does at leading and trailing edges.
+  bool is_identity(Index count) const { return count <= basis_.unknowns(); }
+  Index unknowns_of(Index count) const { return is_identity(count) ? count : basis_.unknowns(); }
+
+  /// The basis block of a segment depends only on its element count: cached per count.
+  const Matrix& basis_of(Index count) {
+    auto& blocks = memory_.blocks;
+    if (static_cast<Index>(blocks.size()) <= count) blocks.resize(static_cast<std::size_t>(count) + 1);
+    auto& block = blocks[static_cast<std::size_t>(count)];
+    if (block.size() == 0) block = basis_.template block<Scalar>(count);
+    return block;
+  }
+
+  /// The pseudo-inverse A⁺ of the basis block of `count` elements (cached): α = A⁺ p for p = A α.
+  const Matrix& projection_of(Index count) {
+    auto& projections = memory_.projections;
+    if (static_cast<Index>(projections.size()) <= count) projections.resize(static_cast<std::size_t>(count) + 1);
+    auto& projection = projections[static_cast<std::size_t>(count)];
+    if (projection.size() == 0) projection = Eigen::CompleteOrthogonalDecomposition<Matrix>(basis_of(count)).pseudoInverse();
+    return projection;
+  }
+
+  /// Position of `segment` in the assembly `previous`, or −1.
+  static Index previous_index(const Assembly* previous, const Segment& segment) {
+    if (previous == nullptr) return -1;
+    const auto& old = previous->segments;
+    const auto at = std::lower_bound(old.begin(), old.end(), segment, [](const Segment& a, const Segment& b) {
+      return a.strip < b.strip || (a.strip == b.strip && a.first < b.first);
+    });
+    return at != old.end() && *at == segment ? static_cast<Index>(at - old.begin()) : -1;
+  }
+
+  /// The block used for a segment of `count` elements: the basis, or the identity.
+  Matrix block_of(Index count) {
+    return is_identity(count) ? Matrix(Matrix::Identity(count, count)) : basis_of(count);
+  }
+
+  /// Lower triangle of Aᵀ C_II A, block (t, s) for t ≥ s = A_tᵀ C_ts A_s. Blocks between two
+  /// segments both in `previous` are copied from it; the others are one product of a run
+  /// of the table with the correlation table of the two segment lengths (Eq. (M2)). Pairs
+  /// without a table (past the memory budget) take the direct product: per source segment
+  /// s, the Toeplitz blocks C_ts of those targets stacked into one tall matrix times A_s.
+  void assemble(Assembly& next, const Assembly* previous) {
+    auto matrix = next.matrix.view();
+    auto& old_index = memory_.old_index;
+    old_index.clear();
+    for (const Segment& segment : next.segments) old_index.push_back(previous_index(previous, segment));
+    auto block_of_count = [this](Index count) { return block_of(count); };
+    auto& direct = memory_.direct;
+    for (std::size_t s = 0; s < next.segments.size(); ++s) {
+      const Segment& source = next.segments[s];
+      const Index q_s = unknowns_of(source.count);
+      direct.clear();
+      Index rows = 0;
+      for (std::size_t t = s; t < next.segments.size(); ++t) {
+        const Segment& target = next.segments[t];
+        const Index q_t = unknowns_of(target.count);
+        auto block = matrix.block(next.offsets[t], next.offsets[s], q_t, q_s);
+        if (old_index[s] >= 0 && old_index[t] >= 0) {  // both unchanged: copy
+          block = previous->matrix.view().block(previous->offsets[static_cast<std::size_t>(old_index[t])],
+                                                previous->offsets[static_cast<std::size_t>(old_index[s])], q_t, q_s);
+        } else if (const Matrix* correlation = tables_.correlation(target.count, source.count, block_of_count)) {
+          // Σ_d c(Δ + d, dj) K(d), d = −(n_s − 1) … n_t − 1: K's column a + q_t·b is entry (a, b).
+          auto entries = memory_.block_entries.resize(q_t * q_s, 1);
+          entries.noalias() =
+              correlation->transpose() * influence_.run(target.first - source.first - (source.count - 1),
+                                                        target.strip - source.strip, target.count + source.count - 1);
+          block = Eigen::Map<const Matrix>(entries.data(), q_t, q_s);
+        } else {
+          direct.push_back(t);
+          rows += target.count;
+        }
+      }
+      if (direct.empty()) continue;
+      // C_ts(m, n) = C(i_t + m − i_s − n, j_t − j_s): one run of the table each column.
+      auto coupling = memory_.coupling.resize(rows, source.count);
+      Index row = 0;
+      for (std::size_t t : direct) {
+        const Segment& target = next.segments[t];
+        influence_.fill_toeplitz(target.first - source.first, target.strip - source.strip,
+                                 coupling.middleRows(row, target.count));
+        row += target.count;
+      }
+      const bool source_identity = is_identity(source.count);
+      auto times_basis = memory_.times_basis.resize(rows, q_s);
+      if (!source_identity) times_basis.noalias() = coupling * basis_of(source.count);
+      const auto half = source_identity ? coupling : times_basis;
+      row = 0;
+      for (std::size_t t : direct) {
+        const Segment& target = next.segments[t];
+        auto block = matrix.block(next.offsets[t], next.offsets[s], unknowns_of(target.count), q_s);
+        if (is_identity(target.count)) {
+          block = half.middleRows(row, target.count);
+        } else {
+          block.noalias() = basis_of(target.count).transpose() * half.middleRows(row, target.count);
+        }
+        row += target.count;
+      }
+    }
+  }
+
+  const InfluenceTable<Scalar>& influence_;
+  const Basis& basis_;
+  SegmentTables<Scalar>& tables_;
+  Memory& memory_;
+};
+
+}  // namespace detail
+}  // namespace fastnorm

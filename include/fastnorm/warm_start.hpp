@@ -1,0 +1,90 @@
+#pragma once
+/// @file warm_start.hpp
+/// Where the next solve of a workspace starts (docs/architecture.md §2).
+
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+#include "fastnorm/error.hpp"
+#include "fastnorm/solution.hpp"
+
+namespace fastnorm {
+
+/// The starting state a workspace hands to its next solve: a contact set and, where the
+/// solver that last used it works with them (CG), the pressures it ended with.
+///
+/// A solver fills it after each solve with what it uses to start the next one (NORM its
+/// contact set, CG its pressures and contact set; the reduced solvers leave it as it was,
+/// because their answer depends on the path of the active set: docs/method.md §3). A
+/// caller may set it, e.g. to the previous contact set shifted to a new grid; the next
+/// solve checks it against its grid.
+template <typename Scalar = double>
+class WarmStart {
+ public:
+  using Index = Eigen::Index;
+  using Vector = Eigen::Matrix<Scalar, Eigen::Dynamic, 1>;
+
+  /// The contact set the next solve starts from: sorted element numbers k = i + mx·j.
+  /// Empty: a cold start.
+  const std::vector<Index>& contact_set() const { return contact_set_; }
+
+  /// Starts the next solve from `contact_set` (sorted, each element once, each < grid.size()
+  /// of the solver that uses it: checked there). Forgets any pressures.
+  void set_contact_set(std::vector<Index> contact_set) {
+    contact_set_ = std::move(contact_set);
+    has_pressure_ = false;
+  }
+
+  /// Pressures (Pa, one per element) the last solve ended with, if its solver keeps them.
+  bool has_pressure() const { return has_pressure_; }
+  const Vector& pressure() const { return pressure_; }
+
+  /// Nothing to start from: the next solve is cold. Keeps the storage.
+  void clear() {
+    contact_set_.clear();
+    has_pressure_ = false;
+  }
+
+  /// The contact set of a usable solution (empty otherwise); without pressures.
+  void remember_set(const Solution<Scalar>& solution) {
+    contact_set_.clear();
+    has_pressure_ = false;
+    if (!solution.ok()) return;
+    for (Index k = 0; k < solution.in_contact.size(); ++k) {
+      if (solution.in_contact(k)) contact_set_.push_back(k);
+    }
+  }
+
+  /// The contact set and the pressures of a usable solution (nothing otherwise).
+  void remember_pressure(const Solution<Scalar>& solution) {
+    remember_set(solution);
+    has_pressure_ = solution.ok() && !contact_set_.empty();
+    if (has_pressure_) pressure_ = solution.pressure;
+  }
+
+  /// @throws fastnorm::invalid_argument unless the contact set is sorted, without repeats,
+  ///         and within a grid of `element_count` elements
+  void check(Index element_count) const {
+    for (std::size_t n = 0; n < contact_set_.size(); ++n) {
+      const Index k = contact_set_[n];
+      FASTNORM_CHECK(k >= 0 && k < element_count,
+                     detail::describe("warm start: contact_set[" + std::to_string(n) + "] must lie in [0, " +
+                                          std::to_string(element_count) + ")",
+                                      k));
+      FASTNORM_CHECK(n == 0 || contact_set_[n - 1] < k,
+                     detail::describe("warm start: contact_set must be sorted without repeats; contact_set[" +
+                                          std::to_string(n) + "]",
+                                      k));
+    }
+    FASTNORM_CHECK(!has_pressure_ || pressure_.size() == element_count,
+                   detail::describe("warm start: pressure must have one value per element", pressure_.size()));
+  }
+
+ private:
+  std::vector<Index> contact_set_;
+  Vector pressure_;
+  bool has_pressure_ = false;
+};
+
+}  // namespace fastnorm
