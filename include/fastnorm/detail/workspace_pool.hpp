@@ -17,8 +17,8 @@ template <typename Workspace>
 class WorkspacePool {
  public:
   WorkspacePool() = default;
-  WorkspacePool(const WorkspacePool&) {}
-  WorkspacePool& operator=(const WorkspacePool&) { return *this; }
+  WorkspacePool(const WorkspacePool&) noexcept {}
+  WorkspacePool& operator=(const WorkspacePool&) noexcept { return *this; }
   ~WorkspacePool() = default;
 
   /// A workspace for the duration of one call; back to the pool when it goes out of scope.

@@ -2,7 +2,7 @@
 /// @file contact_search.hpp
 /// Rigid contact search along the contact locus: the vertical gap between each wheel and
 /// its rail, its local minima, and the interpenetration regions that become contact patches
-/// (docs/wheel-rail.md §3, from ../shared/docs/wheelset-geometry.md §3–4).
+/// (docs/wheel-rail.md §4).
 
 #include <Eigen/Core>
 #include <algorithm>

@@ -1,7 +1,6 @@
 #pragma once
 /// @file equilibrium.hpp
-/// Static equilibrium of a loaded wheelset on the track (docs/wheel-rail.md §5, from
-/// ../shared/docs/wheelset-geometry.md §5): Newton–Raphson on the vertical position z and
+/// Static equilibrium of a loaded wheelset on the track (docs/wheel-rail.md §5): Newton–Raphson on the vertical position z and
 /// roll φ with the normal forces of a chosen solver, and the single-wheel mode of
 /// CONTACT's benchmark (vertical force prescribed on one wheel, roll 0).
 
@@ -105,7 +104,7 @@ namespace detail {
 /// The equilibrium search (docs/wheel-rail.md §5) for the wheels in `sides` carrying `load`;
 /// roll is an unknown only when both wheels are loaded. Each outer pass finds the patches at
 /// the current pose (exact h); within a pass a rigid motion (dz, dφ) changes the approach
-/// of patch k by c_k·dz + L_k·dφ (wheelset-geometry.md §5), so Newton runs on solves of
+/// of patch k by c_k·dz + L_k·dφ (docs/wheel-rail.md §5), so Newton runs on solves of
 /// h_k − approach_k. A pass ends when the residual at its own pose is within tolerance, or
 /// the pose moves. Solvers are kept for every grid size met and each patch keeps its
 /// workspace while its grid stays the same, so later steps start warm.

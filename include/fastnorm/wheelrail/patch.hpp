@@ -1,8 +1,7 @@
 #pragma once
 /// @file patch.hpp
 /// A contact patch: its reference point and tangent plane, the grid of the potential contact
-/// area, and the exact undeformed distance h(x, s) on it (docs/wheel-rail.md §4, from
-/// ../shared/docs/wheelset-geometry.md §4).
+/// area, and the exact undeformed distance h(x, s) on it (docs/wheel-rail.md §4).
 
 #include <Eigen/Core>
 #include <algorithm>
@@ -33,7 +32,7 @@ struct PatchGridOptions {
 };
 
 /// Where undeformed_distance looks for the wheel surface along the normal line through a
-/// rail point (m, + into the rail): wheelset-geometry.md §4.
+/// rail point (m, + into the rail): docs/wheel-rail.md §4.
 struct NormalSearch {
   static constexpr double below = -0.020;  ///< farthest out of the rail
   static constexpr double above = 0.005;   ///< farthest into it
@@ -66,7 +65,7 @@ struct ContactPatch {
 inline constexpr double no_surface_gap = 1.0;
 
 /// The exact undeformed distance h = n_rail − n_wheel at every element centre of `grid`
-/// (wheelset-geometry.md §4 step 3): the rail along the normal line through
+/// (docs/wheel-rail.md §4, item 6): the rail along the normal line through
 /// q = P_ref + x e_x + s t_s by a 2-D intersection, the wheel by solving
 /// √(x_w² + z_w²) = ρ(y_w) in wheelset coordinates.
 inline Eigen::VectorXd undeformed_distance(const Track& track, const Wheelset& wheelset, const WheelsetPose& pose,

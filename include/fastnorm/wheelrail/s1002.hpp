@@ -1,7 +1,6 @@
 #pragma once
 /// @file s1002.hpp
-/// The S1002 wheel profile (EN 13715 / UIC 510-2) in closed form (docs/profiles.md §1,
-/// from the team's ../shared/docs/profiles.md): eight sections, polynomials and arcs.
+/// The S1002 wheel profile (EN 13715 / UIC 510-2) in closed form (docs/wheel-rail.md §1): eight sections, polynomials and arcs.
 
 #include <cmath>
 #include <type_traits>

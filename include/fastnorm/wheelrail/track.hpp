@@ -1,7 +1,7 @@
 #pragma once
 /// @file track.hpp
 /// Two rails placed in the track: canted, lifted to the track plane and set to the gauge
-/// (docs/wheel-rail.md §2, from ../shared/docs/profiles.md §3).
+/// (docs/wheel-rail.md §3).
 
 #include <cmath>
 #include <optional>
@@ -110,7 +110,7 @@ class Track {
   double canted_y(double y_r) const { return cos_ * y_r + sin_ * rail_.evaluate(y_r).value; }
   double canted_z(double y_r) const { return -sin_ * y_r + cos_ * rail_.evaluate(y_r).value; }
 
-  // Right rail: y' = cosθ·y_r + sinθ·z_r, z' = −sinθ·y_r + cosθ·z_r (profiles.md §3), shifted.
+  // Right rail: y' = cosθ·y_r + sinθ·z_r, z' = −sinθ·y_r + cosθ·z_r (docs/wheel-rail.md §3), shifted.
   RailPoint right_rail(double y_r) const {
     const auto at = rail_.evaluate(y_r);
     const double dy = cos_ + sin_ * at.slope, dz = -sin_ + cos_ * at.slope;

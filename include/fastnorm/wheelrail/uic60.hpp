@@ -1,7 +1,7 @@
 #pragma once
 /// @file uic60.hpp
 /// The UIC60 (60E1) rail head in closed form: R300, R80 and R13 arcs, internally
-/// tangent, then the 1:20 flank (docs/profiles.md §2, from ../shared/docs/profiles.md).
+/// tangent, then the 1:20 flank (docs/wheel-rail.md §1).
 
 #include <cmath>
 #include <type_traits>

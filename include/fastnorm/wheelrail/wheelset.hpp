@@ -1,7 +1,6 @@
 #pragma once
 /// @file wheelset.hpp
-/// A wheelset of two profiled wheels and its pose on the track (docs/wheel-rail.md §2,
-/// from ../shared/docs/wheelset-geometry.md §2–3).
+/// A wheelset of two profiled wheels and its pose on the track (docs/wheel-rail.md §3).
 
 #include <Eigen/Core>
 #include <algorithm>
@@ -26,7 +25,7 @@ struct WheelsetPose {
 };
 
 /// The poses the wheel–rail functions accept (m, rad), one set for all of them: beyond
-/// these the small-angle contact locus (wheelset-geometry.md §3) and the profile ranges no
+/// these the small-angle contact locus (docs/wheel-rail.md §4, item 1) and the profile ranges no
 /// longer hold. A pose outside is rejected by name, never solved.
 struct PoseLimits {
   static constexpr double lateral_shift = 0.03;  ///< |y|
@@ -118,7 +117,7 @@ class Wheelset {
     return {layout_.nominal_radius + at.value, side_sign(side) * at.slope};
   }
 
-  /// The locus point at y_w: sin θ = −ρ'·tan ψ (wheelset-geometry.md §3), then C + R·p_ws.
+  /// The locus point at y_w: sin θ = −ρ'·tan ψ (docs/wheel-rail.md §4, item 1), then C + R·p_ws.
   LocusPoint locus(Side side, double profile_y, const WheelsetPose& pose, const Matrix3& rotation) const {
     const auto rho = radius(side, profile_y);
     const double sine = std::clamp(-rho.slope * std::tan(pose.yaw), -1.0, 1.0);
