@@ -4,7 +4,13 @@
 //
 //   fastnorm-wheelrail [--y MM] [--yaw DEG] [--load N | --fz N --wheel left|right]
 //                      [--roll RAD] [--elements N] [--solver NAME] [--compare]
+//                      [--wheel-profile FILE] [--rail-profile FILE] [--cant RAD]
 //                      [--write-case PREFIX] [--svg PREFIX]
+//
+// --wheel-profile, --rail-profile: measured or worn profiles (SIMPACK .prw/.prr or plain
+// 'y z' text in mm; docs/wheel-rail.md §1) instead of the closed-form S1002 and UIC60 (MB);
+// --cant: the rails' inclination (default atan(1/40) rad; 0 for a rail file that is already
+// canted, as the Manchester benchmark's UIC60).
 //
 // Defaults: y = 0, yaw = 0, load = 200 kN on the wheelset (z and roll found), 60 elements
 // across the largest patch, solver norm. --fz with --wheel: CONTACT's single-wheel mode
@@ -32,6 +38,7 @@ namespace {
 const char* const usage =
     "usage: fastnorm-wheelrail [--y MM] [--yaw DEG] [--load N | --fz N --wheel left|right] [--roll RAD]\n"
     "                          [--elements N] [--solver NAME] [--compare] [--write-case PREFIX] [--svg PREFIX]\n"
+    "                          [--wheel-profile FILE] [--rail-profile FILE] [--cant RAD]\n"
     "       NAME: norm | cg | elliptic | polynomial[:G] | elliptic-edge[:K] | polynomial-edge[:G[:K]]\n";
 
 struct Arguments {
@@ -41,6 +48,8 @@ struct Arguments {
   std::string solver = "norm";
   bool compare = false;
   std::string case_prefix, svg_prefix;
+  std::string wheel_profile, rail_profile;
+  double cant = std::atan(1.0 / 40);
 };
 
 struct UsageError : std::runtime_error {
@@ -84,6 +93,9 @@ Arguments parse(int argc, char** argv) {
     else if (word == "--compare") a.compare = true;
     else if (word == "--write-case") a.case_prefix = value();
     else if (word == "--svg") a.svg_prefix = value();
+    else if (word == "--wheel-profile") a.wheel_profile = value();
+    else if (word == "--rail-profile") a.rail_profile = value();
+    else if (word == "--cant") a.cant = parse_number(word, value());
     else if (word == "--help" || word == "-h") {
       std::cout << usage;
       std::exit(0);
@@ -113,8 +125,11 @@ int main(int argc, char** argv) {
     return 2;
   }
   try {
-    const wr::Track track;
-    const wr::Wheelset wheelset;
+    auto measured = [](const std::string& path) { return wr::spline_curve(wr::SplineProfile(wr::read_profile_file(path))); };
+    wr::TrackLayout layout;
+    layout.cant = arguments.cant;
+    const wr::Track track(arguments.rail_profile.empty() ? wr::uic60_rail() : measured(arguments.rail_profile), layout);
+    const wr::Wheelset wheelset(arguments.wheel_profile.empty() ? wr::s1002_wheel() : measured(arguments.wheel_profile));
     wr::EquilibriumOptions options;
     options.solver = fastnorm::SolverSpec<double>::parse(arguments.solver);
     options.grid.elements = arguments.elements;

@@ -10,6 +10,7 @@
 #include <string>
 #include <utility>
 
+#include "support/peer_cases.hpp"
 #include "support/run_command.hpp"
 
 using Catch::Matchers::Contains;
@@ -84,4 +85,39 @@ TEST_CASE("fastnorm-wheelrail refuses bad input with status 2", "[cli][wheelrail
     CHECK(run.status == 2);
     CHECK_THAT(run.output, Contains(message));
   }
+}
+
+TEST_CASE("fastnorm-wheelrail takes measured profile files", "[cli][wheelrail][peer]") {
+  const std::string wheel = fastnorm::test::shared_profile("MBench_S1002_v3.prw");
+  const std::string rail = fastnorm::test::shared_profile("MBench_UIC60_v3.prr");
+  if (wheel.empty() || rail.empty()) {
+    WARN("the MBench profiles are not in ../shared/profiles: skipped");
+    return;
+  }
+  // The Manchester benchmark's files are the closed-form S1002 and MB UIC60 sampled (the
+  // rail already canted 1:40): the same equilibrium, up to the splines through the points.
+  const auto closed_form = run_wheelrail("--y 3 --elements 30");
+  const auto measured =
+      run_wheelrail("--y 3 --elements 30 --wheel-profile " + wheel + " --rail-profile " + rail + " --cant 0");
+  REQUIRE(closed_form.status == 0);
+  REQUIRE(measured.status == 0);
+  std::istringstream expected(closed_form.output), got(measured.output);
+  std::string expected_line, got_line;
+  std::getline(expected, expected_line);
+  std::getline(got, got_line);
+  CHECK(field(got_line, "z") == Approx(field(expected_line, "z")).margin(1e-5));  // mm; measured 3e-6
+  int patches = 0;
+  while (std::getline(expected, expected_line) && std::getline(got, got_line)) {
+    ++patches;
+    INFO(expected_line << "\n" << got_line);
+    CHECK(field(got_line, "fn") == Approx(field(expected_line, "fn")).epsilon(1e-5));  // measured: 6 digits equal
+    CHECK(field(got_line, "pmax") == Approx(field(expected_line, "pmax")).epsilon(5e-4));  // measured 8e-5
+    CHECK(field(got_line, "y_track") == Approx(field(expected_line, "y_track")).margin(1e-3));  // mm
+    CHECK(field(got_line, "contact_angle") == Approx(field(expected_line, "contact_angle")).margin(1e-5));
+  }
+  CHECK(patches == 2);
+
+  const auto missing = run_wheelrail("--wheel-profile /nonexistent/wheel.prw");
+  CHECK(missing.status == 2);
+  CHECK_THAT(missing.output, Contains("/nonexistent/wheel.prw"));
 }
