@@ -2,7 +2,8 @@
 /// @file batch.hpp
 /// Independent problems on one grid solved in parallel (e.g. the patches of a lookup
 /// table): OpenMP threads when compiled with OpenMP (link the CMake target fastnorm::openmp
-/// instead of fastnorm::fastnorm), one after the other otherwise. Each
+/// instead of fastnorm::fastnorm; it also defines EIGEN_DONT_PARALLELIZE, so Eigen's own
+/// products stay on one thread), one after the other otherwise. Each
 /// problem is a cold `solve`, so the answers are the same either way and in any order.
 
 #include <Eigen/Core>

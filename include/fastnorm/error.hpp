@@ -6,6 +6,7 @@
 /// - `FASTNORM_ASSERT` guards internal invariants and is compiled out under `NDEBUG`.
 
 #include <cassert>
+#include <cmath>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -27,6 +28,13 @@ std::string describe(const std::string& what, const Value& value) {
   out.precision(17);
   out << what << " (got " << value << ")";
   return out.str();
+}
+
+/// Throws fastnorm::invalid_argument("<what> must be positive (got <value>)") unless `value`
+/// is finite and positive; `what` names the argument (and its unit).
+template <typename Value>
+void check_positive(const Value& value, const std::string& what) {
+  if (!(std::isfinite(value) && value > 0)) throw invalid_argument("fastnorm: " + describe(what + " must be positive", value));
 }
 
 /// A number as a person writes it in a message (six significant digits: "0.03", "1e-13").

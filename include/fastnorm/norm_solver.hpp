@@ -5,6 +5,7 @@
 /// reference path every faster solver is tested against (docs/design.md §3, docs/norm.md).
 
 #include <Eigen/Core>
+#include <cstdint>
 #include <memory>
 #include <vector>
 
@@ -44,7 +45,7 @@ class NormWorkspace {
   /// The Cholesky factor of C_II for the set I last solved on `table`.
   struct Factorisation {
     std::vector<Index> set;
-    const void* table = nullptr;
+    std::uint64_t solver = 0;  // detail::new_solver_id() of the solver that factorised
     bool valid = false;
     detail::InPlaceCholesky<Scalar> cholesky;
   };
@@ -97,9 +98,9 @@ class NormSolver : public detail::SolverBase<NormSolver<Scalar>, NormWorkspace<S
   Solution<Scalar> solve(const Eigen::Ref<const Vector>& undeformed_distance, const Loading<Scalar>& loading,
                          Workspace& workspace) const {
     workspace.start_.check(grid().size());
-    if (workspace.factorisation_.table != influence_.get()) {
+    if (workspace.factorisation_.solver != id_) {
       workspace.factorisation_.valid = false;
-      workspace.factorisation_.table = influence_.get();
+      workspace.factorisation_.solver = id_;
     }
     DenseSetSolver set_solver{*influence_, workspace.factorisation_};
     Solution<Scalar> solution = detail::solve_active_set(*influence_, undeformed_distance, loading, options_,
@@ -133,6 +134,7 @@ class NormSolver : public detail::SolverBase<NormSolver<Scalar>, NormWorkspace<S
 
   std::shared_ptr<const InfluenceTable<Scalar>> influence_;
   Options options_;
+  std::uint64_t id_ = detail::new_solver_id();
 };
 
 }  // namespace fastnorm

@@ -6,6 +6,7 @@
 /// basis per segment of each strip.
 
 #include <Eigen/Core>
+#include <cstdint>
 #include <memory>
 
 #include "fastnorm/bases.hpp"
@@ -47,7 +48,7 @@ class ReducedWorkspace {
   template <typename Basis, typename S>
   friend class ReducedSolver;
   WarmStart<Scalar> start_;
-  const void* owner_ = nullptr;  // the segment tables of the solver the memory belongs to
+  std::uint64_t owner_ = 0;  // detail::new_solver_id() of the solver the memory belongs to
   detail::GalerkinMemory<Scalar> memory_;
   detail::ActiveSetWorkspace<Scalar> loop_;
 };
@@ -92,9 +93,9 @@ class ReducedSolver : public detail::SolverBase<ReducedSolver<Basis, Scalar>, Re
   Solution<Scalar> solve(const Eigen::Ref<const Vector>& undeformed_distance, const Loading<Scalar>& loading,
                          Workspace& workspace) const {
     workspace.start_.check(grid().size());
-    if (workspace.owner_ != tables_.get()) {  // blocks and assemblies of another basis or grid
+    if (workspace.owner_ != id_) {  // blocks and assemblies of another basis or grid
       workspace.memory_ = detail::GalerkinMemory<Scalar>();
-      workspace.owner_ = tables_.get();
+      workspace.owner_ = id_;
     }
     workspace.memory_.next_problem();
     detail::GalerkinSetSolver<Basis, Scalar> set_solver(*influence_, basis_, *tables_, workspace.memory_);
@@ -111,6 +112,7 @@ class ReducedSolver : public detail::SolverBase<ReducedSolver<Basis, Scalar>, Re
   Options options_;
   // Built on first use; h-independent, so copies share them (thread-safe).
   std::shared_ptr<detail::SegmentTables<Scalar>> tables_;
+  std::uint64_t id_ = detail::new_solver_id();
 };
 
 }  // namespace fastnorm

@@ -96,6 +96,19 @@ TEST_CASE("Equilibrium input is checked by name", "[wheelrail][equilibrium]") {
   options = coarse();
   options.grid.elements = 2;
   CHECK_THROWS_WITH(wr::solve_equilibrium(track, wheelset, 0, 0, 2e5, options), Contains("elements"));
+  // Every option is validated up front, by name.
+  options = coarse();
+  options.force_tolerance = 0;
+  CHECK_THROWS_WITH(options.validate(), Contains("force_tolerance"));
+  options = coarse();
+  options.search.step = -1;
+  CHECK_THROWS_WITH(wr::solve_equilibrium(track, wheelset, 0, 0, 2e5, options), Contains("step"));
+  options = coarse();
+  options.start = wr::WheelsetPose{0, std::nan(""), 0, 0};
+  CHECK_THROWS_WITH(wr::solve_equilibrium(track, wheelset, 0, 0, 2e5, options), Contains("start: z must"));
+  // One set of pose ranges for every function (wr::PoseLimits).
+  CHECK_THROWS_WITH(wr::rigid_contact_pose(track, wheelset, 0, 0.15), Contains("yaw must lie within"));
+  CHECK_THROWS_WITH(wr::check_pose({0, 0.2, 0, 0}, "pose"), Contains("pose: z must lie within"));
 }
 
 TEST_CASE("A step limit too small is a status, not an exception", "[wheelrail][equilibrium]") {

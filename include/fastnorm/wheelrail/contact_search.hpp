@@ -29,15 +29,12 @@ struct SearchOptions {
 
   /// @throws fastnorm::invalid_argument naming the offending field
   void validate() const {
-    auto positive = [](double value, const char* what) {
-      FASTNORM_CHECK(std::isfinite(value) && value > 0,
-                     fastnorm::detail::describe(std::string("SearchOptions: ") + what + " must be positive", value));
-    };
-    positive(step, "step (m)");
-    positive(separation_distance, "separation_distance (m)");
-    positive(separation_angle, "separation_angle (rad)");
-    positive(roll_bracket, "roll_bracket (rad)");
-    positive(roll_tolerance, "roll_tolerance (rad)");
+    using fastnorm::detail::check_positive;
+    check_positive(step, "SearchOptions: step (m)");
+    check_positive(separation_distance, "SearchOptions: separation_distance (m)");
+    check_positive(separation_angle, "SearchOptions: separation_angle (rad)");
+    check_positive(roll_bracket, "SearchOptions: roll_bracket (rad)");
+    check_positive(roll_tolerance, "SearchOptions: roll_tolerance (rad)");
     FASTNORM_CHECK(max_root_steps >= 1,
                    fastnorm::detail::describe("SearchOptions: max_root_steps must be >= 1", max_root_steps));
   }

@@ -47,14 +47,11 @@ struct EquilibriumOptions {
     grid.validate();
     search.validate();
     Material<double>(young_modulus, poisson_ratio);  // checks both
-    auto positive = [](double value, const char* what) {
-      FASTNORM_CHECK(std::isfinite(value) && value > 0,
-                     fastnorm::detail::describe(std::string("EquilibriumOptions: ") + what + " must be positive", value));
-    };
-    positive(force_tolerance, "force_tolerance");
-    positive(hertz_stiffness_factor, "hertz_stiffness_factor");
-    positive(secant_min_change, "secant_min_change (m)");
-    positive(approach_at_100kN, "approach_at_100kN (m)");
+    using fastnorm::detail::check_positive;
+    check_positive(force_tolerance, "EquilibriumOptions: force_tolerance");
+    check_positive(hertz_stiffness_factor, "EquilibriumOptions: hertz_stiffness_factor");
+    check_positive(secant_min_change, "EquilibriumOptions: secant_min_change (m)");
+    check_positive(approach_at_100kN, "EquilibriumOptions: approach_at_100kN (m)");
     FASTNORM_CHECK(max_iterations >= 1,
                    fastnorm::detail::describe("EquilibriumOptions: max_iterations must be >= 1", max_iterations));
     if (start) check_pose(*start, "EquilibriumOptions: start");
