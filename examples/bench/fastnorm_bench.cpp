@@ -1,7 +1,7 @@
 // fastnorm-bench: times the solvers side by side in one run and prints medians and ratios
 // (docs/performance.md). Three kinds of line:
 //
-//   fastnorm-bench [--repeats 5] [--norm-limit 6000] [--solvers EXTRA,...] [--sequence [--calls 50]] CASE...
+//   fastnorm-bench [--help] [--repeats 5] [--norm-limit 6000] [--solvers EXTRA,...] [--sequence [--calls 50]] CASE...
 //     case=<name> ncontact=<n> norm_s=<t> cg_s=<t> elliptic_s=<t> polynomial4_s=<t>
 //          err_elliptic=<x> err_polynomial4=<x> speedup_elliptic_vs_cg=<x>
 //          speedup_polynomial4_vs_cg=<x> err_cg=<x> cg_as_contact_s=<t> contact_s=<t>
@@ -36,6 +36,8 @@
 #include <string>
 #include <vector>
 
+#include "support/arguments.hpp"
+
 namespace {
 
 using Clock = std::chrono::steady_clock;
@@ -44,13 +46,6 @@ double median(std::vector<double> values) {
   std::sort(values.begin(), values.end());
   const std::size_t middle = values.size() / 2;
   return values.size() % 2 ? values[middle] : (values[middle - 1] + values[middle]) / 2;
-}
-
-std::vector<int> split_sizes(const std::string& text) {
-  std::vector<int> items;
-  std::istringstream in(text);
-  for (std::string item; std::getline(in, item, ',');) items.push_back(std::stoi(item));
-  return items;
 }
 
 double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
@@ -217,68 +212,60 @@ void bench_growth(const std::vector<int>& sizes, int repeats, Eigen::Index norm_
   }
 }
 
+struct Arguments {
+  std::vector<int> sizes{30, 60, 120, 240, 480};
+  std::vector<std::string> cases;
+  int repeats = 5, calls = 50;
+  long norm_limit = 6000;
+  bool growth = false, sequence = false;
+  std::vector<std::string> sequence_solvers{"cg", "elliptic", "polynomial:4"}, solvers;
+};
+
+fastnorm_example::CommandLine command_line(Arguments& a) {
+  using fastnorm_example::at_least;
+  fastnorm_example::CommandLine line("fastnorm-bench",
+                                   "Times the solvers side by side in one run, one thread, and prints medians and "
+                                   "ratios (docs/performance.md).");
+  line.positional("CASE", a.cases, ".case files to time (none: --growth)", true);
+  line.option("--repeats", a.repeats, "N", "runs of every solver per case; times are medians", at_least(1));
+  line.option("--norm-limit", a.norm_limit, "N", "skip NORM on grids of more elements", at_least(1));
+  line.option("--solvers", a.solvers, "NAME,...", "extra solvers timed beside norm, cg, elliptic, polynomial:4");
+  line.flag("--sequence", a.sequence, "also time warm sequences on each case");
+  line.option("--sequence-solvers", a.sequence_solvers, "NAME,...", "the solvers of --sequence");
+  line.option("--calls", a.calls, "N", "calls in a --sequence", at_least(1));
+  line.flag("--growth", a.growth, "time Hertz grids of growing size");
+  line.option("--sizes", a.sizes, "N,...", "--growth: elements across each grid", at_least(4));
+  return line;
+}
+
+int run(const Arguments& a) {
+  std::vector<std::string> extra_solvers;
+  for (const auto& name : a.solvers) {
+    const auto spec = fastnorm::SolverSpec<double>::parse(name);
+    if (spec.name() != "norm" && spec.name() != "cg" && spec.name() != "elliptic" && spec.name() != "polynomial:4") {
+      extra_solvers.push_back(spec.name());
+    }
+  }
+  if (a.growth || a.cases.empty()) bench_growth(a.sizes, a.repeats, a.norm_limit);
+  std::vector<Problem> problems;
+  for (const auto& path : a.cases) {
+    const auto stored = fastnorm::read_case_file(path);
+    const double stored_approach = stored.result ? stored.result->approach : 0.0;
+    problems.push_back({stored.name, stored.grid, stored.material, stored.undeformed_distance.array() - stored_approach,
+                        stored.result ? std::optional<double>(stored.result->solve_seconds) : std::nullopt, stored});
+    bench_case(problems.back(), a.repeats, a.norm_limit, extra_solvers);
+  }
+  if (a.sequence) {
+    for (const auto& problem : problems) bench_sequence(problem, a.sequence_solvers, a.calls);
+  }
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   Eigen::setNbThreads(1);  // one thread, whether or not the build has OpenMP
-  std::vector<int> sizes{30, 60, 120, 240, 480};
-  std::vector<std::string> cases;
-  int repeats = 5, calls = 50;
-  Eigen::Index norm_limit = 6000;
-  bool growth = false, sequence = false;
-  std::vector<std::string> sequence_solvers{"cg", "elliptic", "polynomial:4"}, extra_solvers;
-  try {
-    for (int n = 1; n < argc; ++n) {
-      const std::string word = argv[n];
-      const bool has_value = n + 1 < argc;
-      if (word == "--sizes" && has_value) {
-        sizes = split_sizes(argv[++n]);
-      } else if (word == "--repeats" && has_value) {
-        repeats = std::max(1, std::stoi(argv[++n]));
-      } else if (word == "--calls" && has_value) {
-        calls = std::max(1, std::stoi(argv[++n]));
-      } else if (word == "--norm-limit" && has_value) {
-        norm_limit = std::stol(argv[++n]);
-      } else if (word == "--sequence-solvers" && has_value) {
-        std::istringstream in(argv[++n]);
-        sequence_solvers.clear();
-        for (std::string item; std::getline(in, item, ',');) sequence_solvers.push_back(item);
-      } else if (word == "--solvers" && has_value) {
-        std::istringstream in(argv[++n]);
-        for (std::string item; std::getline(in, item, ',');) {
-          if (item != "norm" && item != "cg" && item != "elliptic" && item != "polynomial:4" && item != "polynomial") {
-            extra_solvers.push_back(item);
-          }
-        }
-      } else if (word == "--growth") {
-        growth = true;
-      } else if (word == "--sequence") {
-        sequence = true;
-      } else if (!word.empty() && word[0] == '-') {
-        throw std::invalid_argument("unknown option or missing value: " + word);
-      } else {
-        cases.push_back(word);
-      }
-    }
-    if (growth || cases.empty()) bench_growth(sizes, repeats, norm_limit);
-    std::vector<Problem> problems;
-    for (const auto& path : cases) {
-      const auto stored = fastnorm::read_case_file(path);
-      const double stored_approach = stored.result ? stored.result->approach : 0.0;
-      problems.push_back({stored.name, stored.grid, stored.material,
-                          stored.undeformed_distance.array() - stored_approach,
-                          stored.result ? std::optional<double>(stored.result->solve_seconds) : std::nullopt,
-                          stored});
-      bench_case(problems.back(), repeats, norm_limit, extra_solvers);
-    }
-    if (sequence) {
-      for (const auto& problem : problems) bench_sequence(problem, sequence_solvers, calls);
-    }
-  } catch (const std::exception& error) {
-    std::cerr << "fastnorm-bench: " << error.what()
-              << "\nusage: fastnorm-bench [--repeats 5] [--norm-limit 6000] [--solvers EXTRA,...] [--sequence [--calls 50]] CASE...\n"
-                 "       fastnorm-bench --growth [--sizes 30,60,120,240,480] [--repeats 5]\n";
-    return 2;
-  }
-  return 0;
+  Arguments arguments;
+  auto line = command_line(arguments);
+  return fastnorm_example::run_tool(line, argc, argv, [&] { return run(arguments); });
 }

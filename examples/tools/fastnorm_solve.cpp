@@ -1,7 +1,7 @@
 // fastnorm-solve: solves a .case file and compares with the result it carries.
 //
 //   fastnorm-solve CASE [--solver NAME] [--control approach|force] [--compare]
-//                  [--write-case OUT] [--quiet]
+//                  [--write-case OUT] [--quiet] [--help]
 //
 // NAME: norm (default) | cg | elliptic | polynomial[:G] | elliptic-edge[:K] | polynomial-edge[:G[:K]].
 // Prints one line `fn=<N> approach=<m> ncontact=<n> iterations=<k> solve_s=<s>`, followed on
@@ -16,17 +16,18 @@
 #include <chrono>
 #include <fstream>
 #include <iostream>
-#include <utility>
 #include <string>
+#include <utility>
+#include <vector>
+
+#include "support/arguments.hpp"
 
 namespace {
 
-const char* const usage =
-    "usage: fastnorm-solve CASE [--solver NAME] [--control approach|force] [--compare] [--write-case OUT] [--quiet]\n"
-    "       NAME: norm | cg | elliptic | polynomial[:G] | elliptic-edge[:K] | polynomial-edge[:G[:K]]\n";
+using fastnorm_example::UsageError;
 
 struct Arguments {
-  std::string case_path;
+  std::vector<std::string> case_path;  // exactly one
   std::string solver = "norm";
   std::string control;  // empty: as the case's control line says
   std::string write_path;
@@ -34,41 +35,17 @@ struct Arguments {
   bool compare = false;
 };
 
-struct UsageError : std::runtime_error {
-  using std::runtime_error::runtime_error;
-};
-
-Arguments parse(int argc, char** argv) {
-  Arguments arguments;
-  for (int n = 1; n < argc; ++n) {
-    const std::string word = argv[n];
-    auto value = [&]() -> std::string {
-      if (n + 1 >= argc) throw UsageError("option " + word + " needs a value");
-      return argv[++n];
-    };
-    if (word == "--solver") {
-      arguments.solver = value();
-    } else if (word == "--control") {
-      arguments.control = value();
-      if (arguments.control != "approach" && arguments.control != "force") {
-        throw UsageError("--control must be 'approach' or 'force', not '" + arguments.control + "'");
-      }
-    } else if (word == "--write-case") {
-      arguments.write_path = value();
-    } else if (word == "--quiet") {
-      arguments.quiet = true;
-    } else if (word == "--compare") {
-      arguments.compare = true;
-    } else if (!word.empty() && word[0] == '-') {
-      throw UsageError("unknown option '" + word + "'");
-    } else if (arguments.case_path.empty()) {
-      arguments.case_path = word;
-    } else {
-      throw UsageError("more than one CASE given ('" + word + "')");
-    }
-  }
-  if (arguments.case_path.empty()) throw UsageError("no CASE given");
-  return arguments;
+fastnorm_example::CommandLine command_line(Arguments& a) {
+  fastnorm_example::CommandLine line("fastnorm-solve",
+                                   "Solves a .case file (docs/case-format.md) and compares with the result it carries.");
+  line.positional("CASE", a.case_path, "the .case file to solve");
+  line.option("--solver", a.solver, "NAME", std::string("the solver: ") + fastnorm::SolverSpec<double>::grammar);
+  line.choice("--control", a.control, {"approach", "force"},
+              "approach: solve on h as it stands; force: the force of the case's control line (default: as the case says)");
+  line.flag("--compare", a.compare, "also solve with full NORM and print the differences and the speed-up");
+  line.option("--write-case", a.write_path, "FILE", "write the case with this solution to FILE");
+  line.flag("--quiet", a.quiet, "print the result line only");
+  return line;
 }
 
 // Solves and times one run.
@@ -86,7 +63,7 @@ double max_difference_over_peak(const Eigen::VectorXd& pressure, const Eigen::Ve
 
 
 int run(const Arguments& arguments) {
-  fastnorm::Case<> problem = fastnorm::read_case_file(arguments.case_path);
+  fastnorm::Case<> problem = fastnorm::read_case_file(arguments.case_path.front());
   const fastnorm::AnySolver<> solver(arguments.solver, problem.grid, problem.material);
   if (arguments.control == "approach") {
     problem.loading = fastnorm::Loading<>::approach();  // h as it stands
@@ -142,12 +119,7 @@ int run(const Arguments& arguments) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  try {
-    return run(parse(argc, argv));
-  } catch (const UsageError& error) {
-    std::cerr << "fastnorm-solve: " << error.what() << '\n' << usage;
-  } catch (const fastnorm::invalid_argument& error) {
-    std::cerr << "fastnorm-solve: " << error.what() << '\n';
-  }
-  return 2;
+  Arguments arguments;
+  auto line = command_line(arguments);
+  return fastnorm_example::run_tool(line, argc, argv, [&] { return run(arguments); });
 }

@@ -151,6 +151,137 @@ inline std::string rest_of_line(const std::string& text, const std::string& keyw
   return text.substr(first, last - first + 1);
 }
 
+/// The sections of a `.case` file in their order (docs/case-format.md), one step each;
+/// every fault names its line.
+template <typename Scalar>
+class CaseReader {
+ public:
+  using Vector = Eigen::Matrix<Scalar, Eigen::Dynamic, 1>;
+
+  CaseReader(std::istream& in, const std::string& source_name) : lines_(in, source_name), source_name_(source_name) {}
+
+  Case<Scalar> read() {
+    if (!lines_.next(words_, text_) || words_.size() != 2 || words_[0] != "fastnorm-case" || words_[1] != "1") {
+      throw case_format_error(source_name_, lines_.number(), "first line must be 'fastnorm-case 1'");
+    }
+    expect("name");
+    const std::string name = rest_of_line(text_, "name");
+    expect("source");
+    const std::string source = rest_of_line(text_, "source");
+    const Grid<Scalar> grid = read_grid();
+    const Material<Scalar> material = read_material();
+    Case<Scalar> problem{name, source, grid, material, Loading<Scalar>::approach(), Scalar(0), Vector(), std::nullopt};
+    read_control(problem);
+    expect("h");
+    bool more = false;
+    problem.undeformed_distance = read_block("h", grid.size(), more);
+    if (more) problem.result = read_result(grid.size());
+    return problem;
+  }
+
+ private:
+  void expect(const std::string& keyword) {
+    if (!lines_.next(words_, text_)) {
+      throw case_format_error(source_name_, lines_.number(), "missing '" + keyword + "' line");
+    }
+    if (words_[0] != keyword) lines_.fail("expected '" + keyword + "', found '" + words_[0] + "'");
+  }
+
+  Scalar number(const std::string& word, const std::string& what) const {
+    return parse_number<Scalar>(lines_, word, what);
+  }
+
+  Grid<Scalar> read_grid() {
+    expect("grid");
+    const auto g = keyed_values(lines_, words_, {"mx", "my", "dx", "dy", "x0", "y0"});
+    const long mx = parse_integer(lines_, g[0], "mx");
+    const long my = parse_integer(lines_, g[1], "my");
+    const Scalar dx = number(g[2], "dx");
+    const Scalar dy = number(g[3], "dy");
+    if (mx < 1 || my < 1 || !(dx > 0) || !(dy > 0)) lines_.fail("grid sizes must be positive (mx, my >= 1; dx, dy > 0)");
+    return Grid<Scalar>(mx, my, dx, dy, number(g[4], "x0"), number(g[5], "y0"));
+  }
+
+  Material<Scalar> read_material() {
+    expect("material");
+    const auto m = keyed_values(lines_, words_, {"E", "nu"});
+    const Scalar young = number(m[0], "E");
+    const Scalar poisson = number(m[1], "nu");
+    try {
+      return Material<Scalar>(young, poisson);
+    } catch (const invalid_argument& error) {
+      lines_.fail(error.what());
+    }
+  }
+
+  // `control force <N>` or `control approach <m>` (the approach is informational).
+  void read_control(Case<Scalar>& problem) {
+    expect("control");
+    if (words_.size() != 3 || (words_[1] != "force" && words_[1] != "approach")) {
+      lines_.fail("control line must be 'control force <N>' or 'control approach <m>'");
+    }
+    const Scalar value = number(words_[2], "control");
+    if (words_[1] == "force") {
+      if (!(value > 0)) lines_.fail("control force must be positive (N)");
+      problem.loading = Loading<Scalar>::force(value);
+    } else {
+      problem.stated_approach = value;
+    }
+  }
+
+  // A block of `count` numbers after its keyword line; `more` tells whether a keyword line
+  // (now in words_) ended it rather than the end of the file.
+  Vector read_block(const std::string& keyword, Eigen::Index count, bool& more) {
+    Vector values(count);
+    Eigen::Index filled = 0;
+    more = false;
+    while (lines_.next(words_, text_)) {
+      if (is_keyword(words_[0])) {
+        more = true;
+        break;
+      }
+      for (const auto& word : words_) {
+        if (filled == count) {
+          lines_.fail("block '" + keyword + "' has more than mx*my = " + std::to_string(count) + " numbers");
+        }
+        values(filled++) = number(word, "block '" + keyword + "'");
+      }
+    }
+    if (filled != count) {
+      lines_.fail("block '" + keyword + "' ends " + (more ? "here" : "at the end of the file") + " with " +
+                  std::to_string(filled) + " numbers, expected mx*my = " + std::to_string(count));
+    }
+    return values;
+  }
+
+  // The `result` line (already in words_) and the `p` block.
+  CaseResult<Scalar> read_result(Eigen::Index count) {
+    if (words_[0] != "result") lines_.fail("expected 'result' or end of file, found '" + words_[0] + "'");
+    if (words_.size() % 2 != 1) lines_.fail("'result' line needs key/value pairs");
+    std::map<std::string, std::string> fields;
+    for (std::size_t n = 1; n + 1 < words_.size(); n += 2) fields[words_[n]] = words_[n + 1];
+    for (const char* key : {"fn", "approach", "ncontact", "iterations", "solve_s"}) {
+      if (!fields.count(key)) lines_.fail(std::string("'result' line lacks field '") + key + "'");
+    }
+    CaseResult<Scalar> stored;
+    stored.normal_force = number(fields["fn"], "fn");
+    stored.approach = number(fields["approach"], "approach");
+    stored.contact_count = parse_integer(lines_, fields["ncontact"], "ncontact");
+    stored.iterations = static_cast<int>(parse_integer(lines_, fields["iterations"], "iterations"));
+    stored.solve_seconds = number(fields["solve_s"], "solve_s");
+    expect("p");
+    bool more = false;
+    stored.pressure = read_block("p", count, more);
+    if (more) lines_.fail("unexpected '" + words_[0] + "' after the 'p' block");
+    return stored;
+  }
+
+  CaseLines lines_;
+  std::string source_name_;
+  std::vector<std::string> words_;  // the current line, split
+  std::string text_;                // the current line, as written
+};
+
 }  // namespace detail
 
 /// Reads a case from a stream.
@@ -158,115 +289,7 @@ inline std::string rest_of_line(const std::string& text, const std::string& keyw
 /// @throws fastnorm::case_format_error with the line number for malformed input
 template <typename Scalar = double>
 Case<Scalar> read_case(std::istream& in, const std::string& source_name) {
-  using Vector = Eigen::Matrix<Scalar, Eigen::Dynamic, 1>;
-  detail::CaseLines lines(in, source_name);
-  std::vector<std::string> words;
-  std::string text;
-
-  auto expect = [&](const std::string& keyword) {
-    if (!lines.next(words, text)) {
-      throw case_format_error(source_name, lines.number(), "missing '" + keyword + "' line");
-    }
-    if (words[0] != keyword) {
-      lines.fail("expected '" + keyword + "', found '" + words[0] + "'");
-    }
-  };
-  // Reads a block of numbers after a keyword line; `after` receives the line that ended it.
-  auto read_block = [&](const std::string& keyword, Eigen::Index count, bool& more) {
-    Vector values(count);
-    Eigen::Index filled = 0;
-    more = false;
-    while (lines.next(words, text)) {
-      if (detail::is_keyword(words[0])) {
-        more = true;
-        break;
-      }
-      for (const auto& word : words) {
-        if (filled == count) {
-          lines.fail("block '" + keyword + "' has more than mx*my = " + std::to_string(count) +
-                     " numbers");
-        }
-        values(filled++) = detail::parse_number<Scalar>(lines, word, "block '" + keyword + "'");
-      }
-    }
-    if (filled != count) {
-      lines.fail("block '" + keyword + "' ends " + (more ? "here" : "at the end of the file") +
-                 " with " + std::to_string(filled) + " numbers, expected mx*my = " +
-                 std::to_string(count));
-    }
-    return values;
-  };
-
-  if (!lines.next(words, text) || words.size() != 2 || words[0] != "fastnorm-case" ||
-      words[1] != "1") {
-    throw case_format_error(source_name, lines.number(), "first line must be 'fastnorm-case 1'");
-  }
-  expect("name");
-  const std::string name = detail::rest_of_line(text, "name");
-  expect("source");
-  const std::string source = detail::rest_of_line(text, "source");
-
-  expect("grid");
-  const auto g = detail::keyed_values(lines, words, {"mx", "my", "dx", "dy", "x0", "y0"});
-  const long mx = detail::parse_integer(lines, g[0], "mx");
-  const long my = detail::parse_integer(lines, g[1], "my");
-  const Scalar dx = detail::parse_number<Scalar>(lines, g[2], "dx");
-  const Scalar dy = detail::parse_number<Scalar>(lines, g[3], "dy");
-  if (mx < 1 || my < 1 || !(dx > 0) || !(dy > 0)) {
-    lines.fail("grid sizes must be positive (mx, my >= 1; dx, dy > 0)");
-  }
-  const Grid<Scalar> grid(mx, my, dx, dy, detail::parse_number<Scalar>(lines, g[4], "x0"),
-                          detail::parse_number<Scalar>(lines, g[5], "y0"));
-
-  expect("material");
-  const auto m = detail::keyed_values(lines, words, {"E", "nu"});
-  const Scalar young = detail::parse_number<Scalar>(lines, m[0], "E");
-  const Scalar poisson = detail::parse_number<Scalar>(lines, m[1], "nu");
-  std::optional<Material<Scalar>> material;
-  try {
-    material.emplace(young, poisson);
-  } catch (const invalid_argument& error) {
-    lines.fail(error.what());
-  }
-
-  expect("control");
-  if (words.size() != 3 || (words[1] != "force" && words[1] != "approach")) {
-    lines.fail("control line must be 'control force <N>' or 'control approach <m>'");
-  }
-  const Scalar control_value = detail::parse_number<Scalar>(lines, words[2], "control");
-  Loading<Scalar> loading = Loading<Scalar>::approach();
-  if (words[1] == "force") {
-    if (!(control_value > 0)) lines.fail("control force must be positive (N)");
-    loading = Loading<Scalar>::force(control_value);
-  }
-
-  const Scalar stated_approach = words[1] == "approach" ? control_value : Scalar(0);
-
-  expect("h");
-  bool more = false;
-  Case<Scalar> result_case{name,   source,          grid,     *material,
-                           loading, stated_approach, Vector(), std::nullopt};
-  result_case.undeformed_distance = read_block("h", grid.size(), more);
-  if (!more) return result_case;
-
-  if (words[0] != "result") lines.fail("expected 'result' or end of file, found '" + words[0] + "'");
-  if (words.size() % 2 != 1) lines.fail("'result' line needs key/value pairs");
-  std::map<std::string, std::string> fields;
-  for (std::size_t n = 1; n + 1 < words.size(); n += 2) fields[words[n]] = words[n + 1];
-  for (const char* key : {"fn", "approach", "ncontact", "iterations", "solve_s"}) {
-    if (!fields.count(key)) lines.fail(std::string("'result' line lacks field '") + key + "'");
-  }
-  CaseResult<Scalar> stored;
-  stored.normal_force = detail::parse_number<Scalar>(lines, fields["fn"], "fn");
-  stored.approach = detail::parse_number<Scalar>(lines, fields["approach"], "approach");
-  stored.contact_count = detail::parse_integer(lines, fields["ncontact"], "ncontact");
-  stored.iterations = static_cast<int>(detail::parse_integer(lines, fields["iterations"], "iterations"));
-  stored.solve_seconds = detail::parse_number<Scalar>(lines, fields["solve_s"], "solve_s");
-  expect("p");
-  stored.pressure = read_block("p", grid.size(), more);
-  if (more) lines.fail("unexpected '" + words[0] + "' after the 'p' block");
-  result_case.result = std::move(stored);
-  return result_case;
+  return detail::CaseReader<Scalar>(in, source_name).read();
 }
 
 /// Reads a case file.
