@@ -134,11 +134,18 @@ class AnySolver : public detail::SolverBase<AnySolver<Scalar>, AnyWorkspace<Scal
     return model_->solve(undeformed_distance, loading, workspace);
   }
 
+  /// The chosen solver's normal_stiffness: dFn/dδ (N/m) at the contact set of `solution`,
+  /// the last solve in `workspace`.
+  Scalar normal_stiffness(const Solution<Scalar>& solution, Workspace& workspace) const {
+    return model_->normal_stiffness(solution, workspace);
+  }
+
  private:
   struct Model {
     virtual ~Model() = default;
     virtual Solution<Scalar> solve(const Eigen::Ref<const Vector>& h, const Loading<Scalar>& loading,
                                    Workspace& workspace) const = 0;
+    virtual Scalar normal_stiffness(const Solution<Scalar>& solution, Workspace& workspace) const = 0;
     virtual const Grid<Scalar>& grid() const = 0;
     virtual std::unique_ptr<Model> clone() const = 0;
   };
@@ -149,6 +156,9 @@ class AnySolver : public detail::SolverBase<AnySolver<Scalar>, AnyWorkspace<Scal
     Solution<Scalar> solve(const Eigen::Ref<const Vector>& h, const Loading<Scalar>& loading,
                            Workspace& workspace) const override {
       return solver.solve(h, loading, workspace.template as<typename Solver::Workspace>());
+    }
+    Scalar normal_stiffness(const Solution<Scalar>& solution, Workspace& workspace) const override {
+      return solver.normal_stiffness(solution, workspace.template as<typename Solver::Workspace>());
     }
     const Grid<Scalar>& grid() const override { return solver.grid(); }
     std::unique_ptr<Model> clone() const override { return std::make_unique<Holder>(solver); }

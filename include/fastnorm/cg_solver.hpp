@@ -8,6 +8,7 @@
 #include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <string>
@@ -105,6 +106,38 @@ class CgSolver : public detail::SolverBase<CgSolver<Scalar>, CgWorkspace<Scalar>
     }
     workspace.start_.remember_pressure(solution);
     return solution;
+  }
+
+  /// The normal stiffness dFn/dδ (N/m) of the discrete problem at the contact set I of
+  /// `solution`: area · 1ᵀ x with C_II x = 1, by conjugate gradients on I with C by FFT
+  /// (C_II is symmetric positive definite), to a residual of options().tolerance relative
+  /// to 1 (docs/norm.md §5). NaN if that does not converge within max_iterations.
+  Scalar normal_stiffness(const Solution<Scalar>& solution, Workspace& work) const {
+    FASTNORM_CHECK(solution.in_contact.size() == grid().size(), "CgSolver::normal_stiffness: solution of another grid");
+    prepare(work);
+    Vector& x = work.pressure_;
+    Vector& residual = work.gap_;
+    Vector& direction = work.direction_;
+    Vector& product = work.product_;
+    const auto on_set = solution.in_contact.template cast<Scalar>();  // 1 on I, 0 elsewhere
+    if (!solution.in_contact.any()) return Scalar(0);
+    x.setZero();
+    residual = on_set.matrix();
+    direction = residual;
+    const Scalar target = options_.tolerance * options_.tolerance * residual.squaredNorm();
+    Scalar norm = residual.squaredNorm();
+    for (int iteration = 0; norm > target; ++iteration) {
+      if (iteration == options_.max_iterations) return std::numeric_limits<Scalar>::quiet_NaN();
+      work.convolution_->apply(direction, product);
+      product.array() *= on_set;
+      const Scalar step = norm / direction.dot(product);
+      x += step * direction;
+      residual -= step * product;
+      const Scalar next = residual.squaredNorm();
+      direction = residual + (next / norm) * direction;
+      norm = next;
+    }
+    return grid().element_area() * x.sum();
   }
 
  private:

@@ -109,6 +109,15 @@ class NormSolver : public detail::SolverBase<NormSolver<Scalar>, NormWorkspace<S
     return solution;
   }
 
+  /// The normal stiffness dFn/dδ (N/m) of the discrete problem at the contact set of
+  /// `solution`, the last solve in `workspace`: area · 1ᵀ C_II⁻¹ 1, by the Cholesky factor
+  /// that solve left (docs/norm.md §5). 0 without contact.
+  Scalar normal_stiffness(const Solution<Scalar>& solution, Workspace& workspace) const {
+    FASTNORM_CHECK(solution.in_contact.size() == grid().size(), "NormSolver::normal_stiffness: solution of another grid");
+    DenseSetSolver set_solver{*influence_, workspace.factorisation_};
+    return detail::set_stiffness(set_solver, solution, workspace.loop_, grid().element_area());
+  }
+
  private:
   /// Step 2 of NORM: C_II p = rhs with Eigen's Cholesky of the dense block, in storage
   /// reused from one set to the next.

@@ -103,6 +103,16 @@ class ReducedSolver : public detail::SolverBase<ReducedSolver<Basis, Scalar>, Re
                                     workspace.loop_, workspace.start_.contact_set());
   }
 
+  /// The normal stiffness dFn/dδ (N/m) of the reduced problem at the contact set of
+  /// `solution`, the last solve in `workspace`: area · 1ᵀ A (Aᵀ C_II A)⁻¹ Aᵀ 1, by the factor
+  /// that solve left (docs/norm.md §5). 0 without contact.
+  Scalar normal_stiffness(const Solution<Scalar>& solution, Workspace& workspace) const {
+    FASTNORM_CHECK(solution.in_contact.size() == grid().size(), "ReducedSolver::normal_stiffness: solution of another grid");
+    FASTNORM_CHECK(workspace.owner_ == id_, "ReducedSolver::normal_stiffness: the workspace holds another solver's solve");
+    detail::GalerkinSetSolver<Basis, Scalar> set_solver(*influence_, basis_, *tables_, workspace.memory_);
+    return detail::set_stiffness(set_solver, solution, workspace.loop_, grid().element_area());
+  }
+
   /// Memory the segment tables take now (bytes); shared with copies of this solver.
   std::size_t table_bytes() const { return tables_->used_bytes(); }
 

@@ -7,6 +7,7 @@
 #include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -238,6 +239,24 @@ Solution<Scalar> solve_active_set(const InfluenceTable<Scalar>& influence,
                                   const std::vector<Eigen::Index>& start_set) {
   check_problem(influence.grid(), h, loading);
   return ActiveSetLoop<Scalar, SetSolver>(influence, h, loading, options, set_solver, work).run(start_set);
+}
+
+/// dFn/dδ at the contact set of `solution` (docs/norm.md §5): on a fixed set I the
+/// pressures are p_I = S⁻¹(δ − h_I) with S the set solver's operator (C_II, or its Galerkin
+/// projection), so dFn/dδ = area · Σ S⁻¹ 1. One more solve on the set, which reuses the
+/// factor the loop left when the set is the last one it solved.
+template <typename Scalar, typename SetSolver>
+Scalar set_stiffness(SetSolver& set_solver, const Solution<Scalar>& solution, ActiveSetWorkspace<Scalar>& work,
+                     Scalar element_area) {
+  work.active.clear();
+  for (Eigen::Index k = 0; k < solution.in_contact.size(); ++k) {
+    if (solution.in_contact(k)) work.active.push_back(k);
+  }
+  if (work.active.empty()) return Scalar(0);
+  auto columns = work.columns.resize(static_cast<Eigen::Index>(work.active.size()), 1);
+  columns.setOnes();
+  if (!set_solver.solve(work.active, columns)) return std::numeric_limits<Scalar>::quiet_NaN();
+  return element_area * columns.sum();
 }
 
 }  // namespace detail

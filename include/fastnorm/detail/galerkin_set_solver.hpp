@@ -89,6 +89,9 @@ class GalerkinSetSolver {
   /// The set solver of solve_active_set: right-hand sides over `active` in, pressures out.
   bool solve(const std::vector<Index>& active, Eigen::Ref<Matrix> columns) {
     segment_strips(influence_.grid(), active, memory_.segments);
+    if (!memory_.path.empty() && memory_.path.back().segments == memory_.segments) {
+      return solve_with(memory_.path.back(), columns);  // the set just solved, again (a stiffness)
+    }
     auto& last_path = memory_.last_path;
     const auto known = std::find_if(last_path.begin(), last_path.end(), [&](const Assembly& assembly) {
       return assembly.segments == memory_.segments;
@@ -117,8 +120,11 @@ class GalerkinSetSolver {
       next.cholesky.factorise();
     }
     memory_.path.push_back(std::move(next));
-    const Assembly& assembly = memory_.path.back();
+    return solve_with(memory_.path.back(), columns);
+  }
 
+  /// Solves with an assembled set: right-hand sides over the set in `columns`, pressures out.
+  bool solve_with(const Assembly& assembly, Eigen::Ref<Matrix> columns) {
     // Right-hand sides Aᵀ rhs, segment by segment; solved in place into the coefficients α.
     auto coefficients = memory_.reduced_rhs.resize(assembly.unknowns(), columns.cols());
     for (std::size_t s = 0; s < assembly.segments.size(); ++s) {

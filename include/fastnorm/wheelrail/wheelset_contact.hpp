@@ -1,0 +1,402 @@
+#pragma once
+/// @file wheelset_contact.hpp
+/// Contact in the time loop (docs/wheel-rail.md §7): a wheelset contact model that a
+/// vehicle-dynamics code calls at every step with the wheelset's pose and that returns
+/// every wheel's patches, forces, moments and normal stiffness. It keeps its state between
+/// calls: fixed element sizes, one solver per grid size (influence and segment tables
+/// reused), and per patch the solver workspace and the previous contact set, shifted onto
+/// the new grid to start the next solve.
+
+#include <Eigen/Core>
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "fastnorm/any_solver.hpp"
+#include "fastnorm/error.hpp"
+#include "fastnorm/material.hpp"
+#include "fastnorm/solver_spec.hpp"
+#include "fastnorm/wheelrail/contact_search.hpp"
+#include "fastnorm/wheelrail/patch.hpp"
+
+namespace fastnorm::wheelrail {
+
+/// Settings of a WheelsetContact, fixed for its life.
+struct WheelsetContactOptions {
+  SolverSpec<double> solver;      ///< the patch solver (NORM by default)
+  /// Element sizes: element_length and element_width if both are given (m), else the sizes
+  /// that put `elements` across the largest patch at `reference_pose`.
+  PatchGridOptions grid;
+  SearchOptions search;           ///< contact search and patch merging
+  double young_modulus = 2.1e11;  ///< both bodies (Pa)
+  double poisson_ratio = 0.3;     ///< both bodies
+  /// Where the element sizes are chosen when not given; by default the rigid two-wheel
+  /// contact at y = 0, yaw = 0 lowered by `reference_approach`.
+  std::optional<WheelsetPose> reference_pose;
+  double reference_approach = 0.1e-3;  ///< m
+  /// Patch grids on a lattice of the element sizes that moves with each patch only by whole
+  /// elements (§7): consecutive grids differ by whole elements and the previous contact set
+  /// maps onto the new grid exactly. Off: each grid is centred on its patch's contact
+  /// reference point, as the equilibrium does.
+  bool snap_to_lattice = true;
+  /// Start each patch's solve from its previous contact set (shifted onto the new grid).
+  /// NORM's and CG's answers do not depend on it; a reduced solver's may, within its
+  /// error against NORM (docs/performance.md §7).
+  bool warm_start = true;
+  bool stiffness = true;  ///< compute each patch's dFn/dδ (one extra solve with the last factor)
+
+  /// @throws fastnorm::invalid_argument naming the offending field
+  void validate() const {
+    solver.validate();
+    grid.validate();
+    search.validate();
+    Material<double>(young_modulus, poisson_ratio);  // checks both
+    fastnorm::detail::check_positive(reference_approach, "WheelsetContactOptions: reference_approach (m)");
+    FASTNORM_CHECK((grid.element_length > 0) == (grid.element_width > 0),
+                   "WheelsetContactOptions: give both grid.element_length and grid.element_width, or neither");
+    if (reference_pose) check_pose(*reference_pose, "WheelsetContactOptions: reference_pose");
+  }
+};
+
+/// How a patch relates to the patches of the same wheel at the previous call.
+enum class PatchHistory {
+  continued,  ///< the continuation of one previous patch (warm start from its contact set)
+  appeared,   ///< no previous patch near it (cold start)
+  merged,     ///< two or more previous patches became this one (started from their sets)
+  split,      ///< one previous patch became this and another (started from its set)
+};
+
+inline const char* to_string(PatchHistory history) {
+  switch (history) {
+    case PatchHistory::continued: return "continued";
+    case PatchHistory::appeared: return "appeared";
+    case PatchHistory::merged: return "merged";
+    case PatchHistory::split: return "split";
+  }
+  return "unknown";
+}
+
+/// One contact patch at the pose of the call. Track frame: x forward, y right, z down (m).
+struct PatchContact {
+  ContactPatch patch;           ///< frame, grid and undeformed distance h (approach 0)
+  Solution<double> solution;    ///< pressures on patch.grid (Pa), contact set, status
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();  ///< the contact reference point (weighted centre on the rail)
+  Eigen::Vector3d pressure_centre = Eigen::Vector3d::Zero();  ///< centroid of the pressure in the tangent plane
+  double normal_force = 0;      ///< Fn (N)
+  /// The normal force on the wheel, −Fn·n (N; n into the rail, PatchFrame::normal).
+  Eigen::Vector3d force = Eigen::Vector3d::Zero();
+  /// Its moment about the wheelset centre, (pressure_centre − C) × force (N·m).
+  Eigen::Vector3d moment = Eigen::Vector3d::Zero();
+  double contact_angle = 0;     ///< of the normal from the vertical, + leaning to the track centre (rad)
+  double approach = 0;          ///< the rigid interpenetration −min h (m)
+  Eigen::Index contact_elements = 0;
+  double max_pressure = 0;      ///< Pa
+  /// dFn/dδ (N/m): the normal stiffness of the discrete model at the final contact set
+  /// (δ the approach along n); NaN when options.stiffness is off.
+  double stiffness = std::nan("");
+  PatchHistory history = PatchHistory::appeared;
+
+  bool ok() const { return solution.ok(); }
+};
+
+/// Wall-clock time of the three stages of one wheel's evaluation (s).
+struct StageTimes {
+  double search = 0;    ///< contact search, patch frames and grids
+  double distance = 0;  ///< undeformed distance h on the grids
+  double solve = 0;     ///< normal solves and stiffness
+};
+
+/// One wheel at the pose of the call.
+struct WheelContact {
+  Side side = Side::right;
+  std::vector<PatchContact> patches;  ///< by increasing y_w (tread first, flange last)
+  Eigen::Vector3d force = Eigen::Vector3d::Zero();   ///< Σ patch forces (N)
+  Eigen::Vector3d moment = Eigen::Vector3d::Zero();  ///< Σ patch moments about the wheelset centre (N·m)
+  double normal_force = 0;            ///< Σ Fn (N)
+  int vanished = 0;                   ///< previous patches with no successor (contact lost there)
+  StageTimes times;
+
+  bool ok() const {
+    return std::all_of(patches.begin(), patches.end(), [](const PatchContact& patch) { return patch.ok(); });
+  }
+};
+
+/// Both wheels at one pose.
+struct WheelsetContactResult {
+  WheelsetPose pose;
+  std::array<WheelContact, 2> wheels;                ///< left, right
+  Eigen::Vector3d force = Eigen::Vector3d::Zero();   ///< on the wheelset (N)
+  Eigen::Vector3d moment = Eigen::Vector3d::Zero();  ///< about its centre (N·m)
+
+  const WheelContact& wheel(Side side) const { return wheels[side == Side::right ? 1 : 0]; }
+  /// Every patch solved with a usable answer.
+  bool ok() const { return wheels[0].ok() && wheels[1].ok(); }
+};
+
+namespace detail {
+
+/// A patch's state kept from one call to the next.
+template <typename Workspace>
+struct PatchState {
+  PatchFrame frame;               ///< the grid's frame
+  Eigen::Vector3d centre;         ///< the contact reference point (matching)
+  Grid<double> grid{1, 1, 1, 1};
+  std::vector<Eigen::Index> contact_set;
+  Workspace workspace;
+};
+
+inline double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+}  // namespace detail
+
+/// The contact model of one wheelset on its track (docs/wheel-rail.md §7).
+///
+/// **Example**
+/// @code
+/// fastnorm::wheelrail::WheelsetContactOptions options;
+/// options.solver = fastnorm::SolverSpec<>::parse("elliptic");
+/// fastnorm::wheelrail::WheelsetContact<> contact(track, wheelset, options);
+/// for (each time step) {
+///   const auto& result = contact.evaluate(pose);   // y, z, roll, yaw
+///   apply(result.force, result.moment);            // on the wheelset, track frame
+/// }
+/// @endcode
+///
+/// `Solver` is AnySolver by default (instantiated only when used); any solver of the
+/// concept of docs/architecture.md §2 with `normal_stiffness` will do.
+template <typename Solver = AnySolver<double>>
+class WheelsetContact {
+ public:
+  using Workspace = typename Solver::Workspace;
+
+  /// Keeps references to `track` and `wheelset`: they must outlive the model.
+  /// @throws fastnorm::invalid_argument for invalid options, or a reference pose with no
+  ///         contact on a wheel
+  WheelsetContact(const Track& track, const Wheelset& wheelset, WheelsetContactOptions options = {})
+      : track_(track), wheelset_(wheelset), options_(std::move(options)),
+        material_(options_.young_modulus, options_.poisson_ratio) {
+    options_.validate();
+    choose_element_sizes();
+  }
+
+  const WheelsetContactOptions& options() const { return options_; }
+  /// The fixed element sizes (m): rolling dx, lateral ds.
+  double element_length() const { return dx_; }
+  double element_width() const { return ds_; }
+
+  /// Contact of both wheels at `pose`; the result stays valid until the next call.
+  /// @throws fastnorm::invalid_argument for a pose that is not finite or outside PoseLimits
+  const WheelsetContactResult& evaluate(const WheelsetPose& pose) {
+    check_pose(pose, "WheelsetContact::evaluate");
+    result_.pose = pose;
+    result_.force.setZero();
+    result_.moment.setZero();
+    for (Side side : {Side::left, Side::right}) {
+      WheelContact& wheel = result_.wheels[side == Side::right ? 1 : 0];
+      evaluate_wheel(side, pose, wheel);
+      result_.force += wheel.force;
+      result_.moment += wheel.moment;
+    }
+    return result_;
+  }
+
+  /// The next evaluate starts cold: no previous patches, no contact sets (storage kept).
+  void reset() {
+    for (auto& states : states_) states.clear();
+  }
+
+ private:
+  using State = detail::PatchState<Workspace>;
+
+  void choose_element_sizes() {
+    if (options_.grid.element_length > 0) {
+      dx_ = options_.grid.element_length;
+      ds_ = options_.grid.element_width;
+      return;
+    }
+    WheelsetPose pose;
+    if (options_.reference_pose) {
+      pose = *options_.reference_pose;
+    } else {
+      pose = rigid_contact_pose(track_, wheelset_, 0, 0, options_.search);
+      pose.z += options_.reference_approach;
+    }
+    std::vector<PatchExtent> extents;
+    for (Side side : {Side::left, Side::right}) {
+      for (const auto& region : contact_regions(track_, wheelset_, side, pose, options_.search)) {
+        extents.push_back(patch_extent(patch_frame(track_, region), region));
+      }
+    }
+    FASTNORM_CHECK(!extents.empty(), "WheelsetContact: no contact at the reference pose to choose element sizes from");
+    std::tie(dx_, ds_) = element_sizes(extents, options_.grid);
+  }
+
+  /// Search, frames and grids, h, then a solve per patch started from its predecessors.
+  void evaluate_wheel(Side side, const WheelsetPose& pose, WheelContact& wheel) {
+    auto clock = std::chrono::steady_clock::now();
+    wheel.side = side;
+    const auto regions = contact_regions(track_, wheelset_, side, pose, options_.search);
+    std::vector<State>& previous = states_[side == Side::right ? 1 : 0];
+    std::vector<State> next(regions.size());
+    const auto successors = match(regions, previous, wheel);
+    for (std::size_t k = 0; k < regions.size(); ++k) {
+      wheel.patches[k].centre = regions[k].centre;
+      place_grid(regions[k], successors[k], previous, next[k]);
+    }
+    wheel.times.search = detail::seconds_since(clock);
+
+    clock = std::chrono::steady_clock::now();
+    for (std::size_t k = 0; k < regions.size(); ++k) {
+      auto& patch = wheel.patches[k].patch;
+      patch.frame = next[k].frame;
+      patch.grid = next[k].grid;
+      patch.undeformed_distance = undeformed_distance(track_, wheelset_, pose, patch.frame, patch.grid);
+    }
+    wheel.times.distance = detail::seconds_since(clock);
+
+    clock = std::chrono::steady_clock::now();
+    wheel.force.setZero();
+    wheel.moment.setZero();
+    wheel.normal_force = 0;
+    for (std::size_t k = 0; k < regions.size(); ++k) {
+      start_from(successors[k], previous, next[k]);
+      solve_patch(pose, next[k], wheel.patches[k]);
+      wheel.force += wheel.patches[k].force;
+      wheel.moment += wheel.patches[k].moment;
+      wheel.normal_force += wheel.patches[k].normal_force;
+    }
+    previous = std::move(next);
+    wheel.times.solve = detail::seconds_since(clock);
+  }
+
+  /// For each new region, the previous patches whose reference point lies within the
+  /// separation distance of its own; sets each patch's history and the wheel's vanished count.
+  std::vector<std::vector<std::size_t>> match(const std::vector<ContactRegion>& regions,
+                                              const std::vector<State>& previous, WheelContact& wheel) const {
+    std::vector<std::vector<std::size_t>> predecessors(regions.size());
+    std::vector<int> successors(previous.size(), 0);
+    for (std::size_t k = 0; k < regions.size(); ++k) {
+      for (std::size_t p = 0; p < previous.size(); ++p) {
+        if ((regions[k].centre - previous[p].centre).norm() <= options_.search.separation_distance) {
+          predecessors[k].push_back(p);
+          ++successors[p];
+        }
+      }
+    }
+    wheel.patches.resize(regions.size());
+    for (std::size_t k = 0; k < regions.size(); ++k) {
+      const auto& from = predecessors[k];
+      wheel.patches[k].history = from.empty()                 ? PatchHistory::appeared
+                                 : from.size() > 1             ? PatchHistory::merged
+                                 : successors[from[0]] > 1     ? PatchHistory::split
+                                                               : PatchHistory::continued;
+    }
+    wheel.vanished = static_cast<int>(std::count(successors.begin(), successors.end(), 0));
+    return predecessors;
+  }
+
+  /// The patch's frame and grid. On the lattice, the frame's origin is the first
+  /// predecessor's moved by whole elements towards the new reference point (docs/wheel-rail.md §7).
+  void place_grid(const ContactRegion& region, const std::vector<std::size_t>& predecessors,
+                  const std::vector<State>& previous, State& state) const {
+    state.frame = patch_frame(track_, region);
+    state.centre = region.centre;
+    if (options_.snap_to_lattice && !predecessors.empty()) {
+      const PatchFrame& anchor = previous[predecessors.front()].frame;
+      const Eigen::Vector3d offset = region.centre - anchor.reference;
+      const double x = anchor.reference.x() + std::round(offset.x() / dx_) * dx_;
+      const double s = std::round(offset.dot(anchor.lateral_axis()) / ds_) * ds_;
+      const double y = anchor.reference.y() + s * anchor.lateral_axis().y();
+      state.frame.reference = {x, y, anchor.reference.z() + s * anchor.lateral_axis().z()};
+      if (const auto rail = track_.rail_height(region.side, y)) state.frame.reference.z() = rail->value;
+    }
+    state.grid = patch_grid(patch_extent(state.frame, region), dx_, ds_);
+  }
+
+  /// The starting contact set of a patch: its predecessors' sets mapped element by element
+  /// onto its grid (a pure shift on the lattice); cold when it has none.
+  void start_from(const std::vector<std::size_t>& predecessors, std::vector<State>& previous, State& state) const {
+    if (!predecessors.empty()) state.workspace = std::move(previous[predecessors.front()].workspace);
+    if (!options_.warm_start || predecessors.empty()) {
+      state.workspace.forget();
+      return;
+    }
+    std::vector<Eigen::Index> set;
+    const Eigen::Vector3d lateral = state.frame.lateral_axis();
+    for (std::size_t p : predecessors) {
+      const State& from = previous[p];
+      const Eigen::Vector3d from_lateral = from.frame.lateral_axis();
+      for (Eigen::Index k : from.contact_set) {
+        const Eigen::Vector3d point = from.frame.reference + from.grid.x_of(k) * Eigen::Vector3d::UnitX() +
+                                      from.grid.y_of(k) * from_lateral - state.frame.reference;
+        const auto i = static_cast<Eigen::Index>(std::lround((point.x() - state.grid.x0()) / dx_));
+        const auto j = static_cast<Eigen::Index>(std::lround((point.dot(lateral) - state.grid.y0()) / ds_));
+        if (i >= 0 && i < state.grid.mx() && j >= 0 && j < state.grid.my()) set.push_back(state.grid.index(i, j));
+      }
+    }
+    std::sort(set.begin(), set.end());
+    set.erase(std::unique(set.begin(), set.end()), set.end());
+    state.workspace.start().set_contact_set(std::move(set));
+  }
+
+  /// Solves one patch in approach control and fills its forces and stiffness.
+  void solve_patch(const WheelsetPose& pose, State& state, PatchContact& out) {
+    const Solver& solver = solver_for(state.grid);
+    auto& patch = out.patch;
+    out.solution = solver.solve(patch.undeformed_distance, Loading<double>::approach(), state.workspace);
+    const auto& solution = out.solution;
+    state.contact_set.clear();
+    for (Eigen::Index k = 0; k < solution.in_contact.size(); ++k) {
+      if (solution.in_contact(k)) state.contact_set.push_back(k);
+    }
+    out.normal_force = solution.normal_force;
+    out.contact_elements = solution.contact_count();
+    out.max_pressure = solution.pressure.size() > 0 ? solution.pressure.maxCoeff() : 0.0;
+    out.approach = -patch.undeformed_distance.minCoeff();
+    out.contact_angle = patch.frame.contact_angle();
+    // Pressure centroid in the tangent plane, then force and moment on the wheel.
+    double x_mean = 0, s_mean = 0;
+    if (out.normal_force > 0) {
+      const double area = patch.grid.element_area();
+      for (Eigen::Index k : state.contact_set) {
+        x_mean += solution.pressure(k) * area * patch.grid.x_of(k);
+        s_mean += solution.pressure(k) * area * patch.grid.y_of(k);
+      }
+      x_mean /= out.normal_force;
+      s_mean /= out.normal_force;
+    }
+    out.pressure_centre = patch.frame.reference + x_mean * Eigen::Vector3d::UnitX() + s_mean * patch.frame.lateral_axis();
+    out.force = -out.normal_force * patch.frame.normal();
+    out.moment = (out.pressure_centre - wheelset_.centre(pose)).cross(out.force);
+    out.stiffness = options_.stiffness && solution.ok() ? solver.normal_stiffness(solution, state.workspace)
+                                                        : std::nan("");
+  }
+
+  /// The solver of a grid's size (solvers do not depend on the grid's origin).
+  const Solver& solver_for(const Grid<double>& grid) {
+    for (const auto& solver : solvers_) {
+      const auto& known = solver.grid();
+      if (known.mx() == grid.mx() && known.my() == grid.my()) return solver;
+    }
+    solvers_.emplace_back(options_.solver, grid, material_);
+    return solvers_.back();
+  }
+
+  const Track& track_;
+  const Wheelset& wheelset_;
+  WheelsetContactOptions options_;
+  Material<double> material_;
+  double dx_ = 0, ds_ = 0;
+  std::vector<Solver> solvers_;             // one per grid size met (dx, ds fixed)
+  std::array<std::vector<State>, 2> states_;  // per wheel (left, right), per patch
+  WheelsetContactResult result_;
+};
+
+}  // namespace fastnorm::wheelrail
