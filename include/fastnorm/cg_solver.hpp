@@ -263,7 +263,8 @@ class CgSolver : public detail::SolverBase<CgSolver<Scalar>, CgWorkspace<Scalar>
       }
       const Scalar beta = restart ? Scalar(0) : norm / previous_norm;
       previous_norm = norm;
-      for (Index k = 0; k < p.size(); ++k) t(k) = p(k) > 0 ? gap(k) + beta * t(k) : Scalar(0);
+      // On a restart t holds nothing yet (uninitialised storage: 0·t could be NaN).
+      for (Index k = 0; k < p.size(); ++k) t(k) = p(k) > 0 ? gap(k) + (restart ? Scalar(0) : beta * t(k)) : Scalar(0);
     }
 
     /// r = C t and the step along t that minimises the energy on the contact set (with the

@@ -12,3 +12,4 @@
 #include "fastnorm/wheelrail/contact_search.hpp"
 #include "fastnorm/wheelrail/patch.hpp"
 #include "fastnorm/wheelrail/equilibrium.hpp"
+#include "fastnorm/wheelrail/wheelset_contact.hpp"

@@ -8,6 +8,7 @@
 /// the new grid to start the next solve.
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>  // cross
 #include <algorithm>
 #include <array>
 #include <chrono>
@@ -44,10 +45,14 @@ struct WheelsetContactOptions {
   /// maps onto the new grid exactly. Off: each grid is centred on its patch's contact
   /// reference point, as the equilibrium does.
   bool snap_to_lattice = true;
-  /// Start each patch's solve from its previous contact set (shifted onto the new grid).
-  /// NORM's and CG's answers do not depend on it; a reduced solver's may, within its
-  /// error against NORM (docs/performance.md §7).
+  /// Start each NORM or CG solve from the patch's previous contact set (shifted onto the
+  /// new grid); their answers do not depend on it, only their time.
   bool warm_start = true;
+  /// The same for the reduced solvers, whose answer depends on the path of the active set:
+  /// off by default, since a warm start measured larger contact-set differences from NORM
+  /// than the cold path (docs/performance.md §7); off, they follow the cold path and reuse
+  /// the assemblies of their previous solve where the grid is unchanged.
+  bool reduced_warm_start = false;
   bool stiffness = true;  ///< compute each patch's dFn/dδ (one extra solve with the last factor)
 
   /// @throws fastnorm::invalid_argument naming the offending field
@@ -83,7 +88,7 @@ inline const char* to_string(PatchHistory history) {
 
 /// One contact patch at the pose of the call. Track frame: x forward, y right, z down (m).
 struct PatchContact {
-  ContactPatch patch;           ///< frame, grid and undeformed distance h (approach 0)
+  ContactPatch patch{{}, Grid<double>(1, 1, 1, 1), {}};  ///< frame, grid and undeformed distance h (approach 0)
   Solution<double> solution;    ///< pressures on patch.grid (Pa), contact set, status
   Eigen::Vector3d centre = Eigen::Vector3d::Zero();  ///< the contact reference point (weighted centre on the rail)
   Eigen::Vector3d pressure_centre = Eigen::Vector3d::Zero();  ///< centroid of the pressure in the tangent plane
@@ -324,8 +329,9 @@ class WheelsetContact {
   /// onto its grid (a pure shift on the lattice); cold when it has none.
   void start_from(const std::vector<std::size_t>& predecessors, std::vector<State>& previous, State& state) const {
     if (!predecessors.empty()) state.workspace = std::move(previous[predecessors.front()].workspace);
-    if (!options_.warm_start || predecessors.empty()) {
-      state.workspace.forget();
+    const bool warm = options_.solver.is_reduced() ? options_.reduced_warm_start : options_.warm_start;
+    if (!warm || predecessors.empty()) {
+      state.workspace.start().clear();
       return;
     }
     std::vector<Eigen::Index> set;
