@@ -2,8 +2,8 @@
 // taping lines 1500 mm apart, E = 210 GPa, ν = 0.3) brought to static equilibrium, one
 // line per contact patch.
 //
-//   fastnorm-wheelrail [--y MM] [--yaw DEG] [--load N | --fz N --wheel left|right]
-//                      [--roll RAD] [--elements N] [--solver NAME] [--compare]
+//   fastnorm-wheelrail [--y MM] [--yaw DEG] [--load N | --fz N --wheel left|right | --z MM]
+//                      [--roll RAD] [--elements N | --element-size MM] [--solver NAME] [--compare]
 //                      [--wheel-profile FILE] [--rail-profile FILE] [--cant RAD]
 //                      [--write-case PREFIX] [--svg PREFIX] [--help]
 //
@@ -14,7 +14,10 @@
 //
 // Defaults: y = 0, yaw = 0, load = 200 kN on the wheelset (z and roll found), 60 elements
 // across the largest patch, solver norm. --fz with --wheel: CONTACT's single-wheel mode
-// (vertical force on that wheel, roll fixed by --roll, default 0). Each patch line:
+// (vertical force on that wheel, roll fixed by --roll, default 0). --z: contact at the pose
+// (y, z, roll, yaw) as given, no equilibrium (WheelsetContact, docs/wheel-rail.md §7), each
+// line with stiffness=<N/m> (dFn/dδ). --element-size: square elements of that size instead
+// of --elements. Each patch line:
 //   wheel=<left|right> patch=<k> fn=<N> ncontact=<n> pmax=<Pa> x_track=<mm> y_track=<mm>
 //   contact_angle=<rad> approach=<m>
 // (contact reference point in the track frame; approach = the patch's rigid
@@ -30,6 +33,7 @@
 #include <fstream>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "support/arguments.hpp"
 #include "svg.hpp"
@@ -40,9 +44,10 @@ namespace wr = fastnorm::wheelrail;
 using fastnorm_example::UsageError;
 
 struct Arguments {
-  double y_mm = 0, yaw_deg = 0, load = 2e5, fz = 0, roll = 0;
+  double y_mm = 0, yaw_deg = 0, load = 2e5, fz = 0, roll = 0, z_mm = 0;
   std::string wheel;
   long elements = 60;
+  double element_size_mm = 0;  // 0: from `elements`
   std::string solver = "norm";
   bool compare = false;
   std::string case_prefix, svg_prefix;
@@ -61,9 +66,13 @@ fastnorm_example::CommandLine command_line(Arguments& a) {
   line.option("--load", a.load, "N", "vertical load on the wheelset (z and roll found)", positive());
   line.option("--fz", a.fz, "N", "single-wheel mode: vertical force on the wheel --wheel", positive());
   line.choice("--wheel", a.wheel, {"left", "right"}, "single-wheel mode: the loaded wheel");
-  line.option("--roll", a.roll, "RAD", "single-wheel mode: the fixed roll angle",
+  line.option("--z", a.z_mm, "MM", "contact at this vertical position of the wheelset (down), no equilibrium",
+              strictly_within(-wr::PoseLimits::vertical * 1e3, wr::PoseLimits::vertical * 1e3));
+  line.option("--roll", a.roll, "RAD", "the fixed roll angle (single-wheel mode and --z)",
               strictly_within(-wr::PoseLimits::roll, wr::PoseLimits::roll));
   line.option("--elements", a.elements, "N", "elements across the largest patch, each direction", at_least(4));
+  line.option("--element-size", a.element_size_mm, "MM", "square elements of this size instead of --elements",
+              positive());
   line.option("--solver", a.solver, "NAME", std::string("the patch solver: ") + fastnorm::SolverSpec<double>::grammar);
   line.flag("--compare", a.compare, "also solve each patch with full NORM and print rel_fn_err_vs_norm");
   line.option("--wheel-profile", a.wheel_profile, "FILE", "measured wheel profile (.prw or 'y z' in mm)");
@@ -76,12 +85,16 @@ fastnorm_example::CommandLine command_line(Arguments& a) {
 
 // The modes exclude each other: the wheelset load, or one wheel's vertical force.
 void check_mode(const fastnorm_example::CommandLine& line, const Arguments& a) {
-  if (line.given("--fz") || line.given("--wheel")) {
+  if (line.given("--z")) {
+    for (const char* other : {"--load", "--fz", "--wheel"}) {
+      if (line.given(other)) throw UsageError(std::string("--z and ") + other + " exclude each other");
+    }
+  } else if (line.given("--fz") || line.given("--wheel")) {
     if (line.given("--load")) throw UsageError("--load and --fz exclude each other");
     if (!line.given("--wheel")) throw UsageError("--fz needs --wheel left|right");
     if (!line.given("--fz")) throw UsageError("--wheel needs --fz N (> 0)");
   } else if (line.given("--roll") && a.roll != 0) {
-    throw UsageError("--roll applies to the single-wheel mode (--fz, --wheel) only");
+    throw UsageError("--roll applies to the single-wheel mode (--fz, --wheel) and to --z only");
   }
 }
 
@@ -89,25 +102,79 @@ wr::ProfileCurve measured_or(const std::string& path, wr::ProfileCurve closed_fo
   return path.empty() ? closed_form : wr::spline_curve(wr::SplineProfile(wr::read_profile_file(path)));
 }
 
-wr::Equilibrium solve(const Arguments& a, const wr::EquilibriumOptions& options) {
+// The track and wheelset of the command line, with the closed-form profiles by default.
+struct Setup {
+  wr::Track track;
+  wr::Wheelset wheelset;
+};
+
+Setup setup_of(const Arguments& a) {
   wr::TrackLayout layout;
   layout.cant = a.cant;
-  const wr::Track track(measured_or(a.rail_profile, wr::uic60_rail()), layout);
-  const wr::Wheelset wheelset(measured_or(a.wheel_profile, wr::s1002_wheel()));
-  const double y = a.y_mm * 1e-3, yaw = a.yaw_deg * M_PI / 180;
-  if (a.fz > 0) {
-    const auto side = a.wheel == "left" ? wr::Side::left : wr::Side::right;
-    return wr::solve_single_wheel(track, wheelset, side, y, yaw, a.fz, options, a.roll);
-  }
-  return wr::solve_equilibrium(track, wheelset, y, yaw, a.load, options);
+  return {wr::Track(measured_or(a.rail_profile, wr::uic60_rail()), layout),
+          wr::Wheelset(measured_or(a.wheel_profile, wr::s1002_wheel()))};
 }
 
-void print_pose(const Arguments& a, const wr::EquilibriumOptions& options, const wr::Equilibrium& result) {
+wr::PatchGridOptions grid_options(const Arguments& a) {
+  wr::PatchGridOptions grid;
+  grid.elements = a.elements;
+  grid.element_length = grid.element_width = a.element_size_mm * 1e-3;
+  return grid;
+}
+
+// One patch as printed and written.
+struct PatchLine {
+  const wr::ContactPatch& patch;
+  const fastnorm::Solution<double>& solution;
+  double stiffness;  // NaN: not computed (equilibrium modes)
+};
+
+void report_patches(const Arguments& a, const fastnorm::SolverSpec<double>& solver,
+                    const fastnorm::Material<double>& material, const std::vector<PatchLine>& lines);
+
+// The equilibrium modes: the wheelset under --load, or one wheel under --fz.
+int run_equilibrium(const Arguments& a, const Setup& setup, const fastnorm::SolverSpec<double>& solver) {
+  wr::EquilibriumOptions options;
+  options.solver = solver;
+  options.grid = grid_options(a);
+  const double y = a.y_mm * 1e-3, yaw = a.yaw_deg * M_PI / 180;
+  const auto result = a.fz > 0 ? wr::solve_single_wheel(setup.track, setup.wheelset,
+                                                         a.wheel == "left" ? wr::Side::left : wr::Side::right, y, yaw,
+                                                         a.fz, options, a.roll)
+                               : wr::solve_equilibrium(setup.track, setup.wheelset, y, yaw, a.load, options);
   std::printf("# status=%s solver=%s y=%.4f mm yaw=%.4f deg z=%.6f mm roll=%.6e rad vertical_force=%.3f N "
               "lateral_force=%.3f N iterations=%d%s%s\n",
-              to_string(result.status), options.solver.name().c_str(), a.y_mm, a.yaw_deg, result.pose.z * 1e3,
+              to_string(result.status), solver.name().c_str(), a.y_mm, a.yaw_deg, result.pose.z * 1e3,
               result.pose.roll, result.vertical_force, result.lateral_force, result.iterations,
               result.message.empty() ? "" : " message=", result.message.c_str());
+  if (!result.ok()) return 1;
+  std::vector<PatchLine> lines;
+  for (const auto& [patch, solution] : result.patches) lines.push_back({patch, solution, std::nan("")});
+  report_patches(a, solver, fastnorm::Material<double>(options.young_modulus, options.poisson_ratio), lines);
+  return 0;
+}
+
+// --z: contact at the pose as given (grids centred on the contact reference points, as
+// CONTACT's; element sizes from the patches at this pose).
+int run_fixed_pose(const Arguments& a, const Setup& setup, const fastnorm::SolverSpec<double>& solver) {
+  wr::WheelsetContactOptions options;
+  options.solver = solver;
+  options.grid = grid_options(a);
+  options.snap_to_lattice = false;
+  const wr::WheelsetPose pose{a.y_mm * 1e-3, a.z_mm * 1e-3, a.roll, a.yaw_deg * M_PI / 180};
+  options.reference_pose = pose;  // --elements across the largest patch at this pose
+  wr::WheelsetContact<> contact(setup.track, setup.wheelset, options);
+  const auto& result = contact.evaluate(pose);
+  std::printf("# status=%s solver=%s y=%.4f mm yaw=%.4f deg z=%.6f mm roll=%.6e rad vertical_force=%.3f N "
+              "lateral_force=%.3f N mode=fixed-pose\n",
+              result.ok() ? "converged" : "solver failed", solver.name().c_str(), a.y_mm, a.yaw_deg, a.z_mm, a.roll,
+              -result.force.z(), result.force.y());
+  std::vector<PatchLine> lines;
+  for (const auto& wheel : result.wheels) {
+    for (const auto& patch : wheel.patches) lines.push_back({patch.patch, patch.solution, patch.stiffness});
+  }
+  report_patches(a, solver, fastnorm::Material<double>(options.young_modulus, options.poisson_ratio), lines);
+  return result.ok() ? 0 : 1;
 }
 
 void print_patch(const char* wheel, int k, const wr::ContactPatch& patch, const fastnorm::Solution<double>& solution) {
@@ -131,14 +198,15 @@ void write_patch_case(const std::string& path, const std::string& title, const s
 }
 
 // One line per patch, and its case file and drawing when asked for.
-void report_patches(const Arguments& a, const wr::EquilibriumOptions& options, const wr::Equilibrium& result) {
-  const fastnorm::Material<double> material(options.young_modulus, options.poisson_ratio);
-  const bool solved_by_norm = options.solver.kind == fastnorm::SolverSpec<double>::Kind::norm;
+void report_patches(const Arguments& a, const fastnorm::SolverSpec<double>& solver,
+                    const fastnorm::Material<double>& material, const std::vector<PatchLine>& lines) {
+  const bool solved_by_norm = solver.kind == fastnorm::SolverSpec<double>::Kind::norm;
   int number_on_side[2] = {0, 0};
-  for (const auto& [patch, solution] : result.patches) {
+  for (const auto& [patch, solution, stiffness] : lines) {
     const int k = ++number_on_side[patch.frame.side == wr::Side::right];
     const char* wheel = wr::to_string(patch.frame.side);
     print_patch(wheel, k, patch, solution);
+    if (!std::isnan(stiffness)) std::printf(" stiffness=%.6e", stiffness);
     // Full NORM on the same patch, for --compare and the outline in --svg.
     fastnorm::Solution<double> norm = solution;
     if (!solved_by_norm && (a.compare || !a.svg_prefix.empty())) {
@@ -150,7 +218,7 @@ void report_patches(const Arguments& a, const wr::EquilibriumOptions& options, c
     const std::string title = wheel + std::string(" wheel, patch ") + std::to_string(k);
     const std::string stem = std::string("_") + wheel + "_" + std::to_string(k);
     if (!a.case_prefix.empty()) {
-      write_patch_case(a.case_prefix + stem + ".case", title, options.solver.name(), patch, material, solution);
+      write_patch_case(a.case_prefix + stem + ".case", title, solver.name(), patch, material, solution);
     }
     if (!a.svg_prefix.empty()) {
       using fastnorm_example::number;
@@ -158,7 +226,7 @@ void report_patches(const Arguments& a, const wr::EquilibriumOptions& options, c
                                         title + ": y = " + number(a.y_mm) + " mm, yaw = " + number(a.yaw_deg) +
                                             " deg, Fn = " + number(solution.normal_force / 1e3, "%.1f") + " kN",
                                         patch.grid, norm, "NORM", solved_by_norm ? nullptr : &solution,
-                                        options.solver.name());
+                                        solver.name());
     }
   }
 }
@@ -170,13 +238,8 @@ int main(int argc, char** argv) {
   auto line = command_line(arguments);
   return fastnorm_example::run_tool(line, argc, argv, [&] {
     check_mode(line, arguments);
-    wr::EquilibriumOptions options;
-    options.solver = fastnorm::SolverSpec<double>::parse(arguments.solver);
-    options.grid.elements = arguments.elements;
-    const auto result = solve(arguments, options);
-    print_pose(arguments, options, result);
-    if (!result.ok()) return 1;
-    report_patches(arguments, options, result);
-    return 0;
+    const auto solver = fastnorm::SolverSpec<double>::parse(arguments.solver);
+    const Setup setup = setup_of(arguments);
+    return line.given("--z") ? run_fixed_pose(arguments, setup, solver) : run_equilibrium(arguments, setup, solver);
   });
 }

@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <catch2/catch.hpp>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <fastnorm/fastnorm.hpp>
@@ -120,4 +121,41 @@ TEST_CASE("fastnorm-wheelrail takes measured profile files", "[cli][wheelrail][p
   const auto missing = run_wheelrail("--wheel-profile /nonexistent/wheel.prw");
   CHECK(missing.status == 2);
   CHECK_THAT(missing.output, Contains("/nonexistent/wheel.prw"));
+}
+
+TEST_CASE("fastnorm-wheelrail --z gives the contact at a fixed pose", "[cli][wheelrail]") {
+  // At the equilibrium's own pose the fixed-pose mode finds the equilibrium's patches.
+  const auto equilibrium = run_wheelrail("--y 3 --elements 30");
+  REQUIRE(equilibrium.status == 0);
+  std::istringstream lines(equilibrium.output);
+  std::string pose_line;
+  std::getline(lines, pose_line);
+  char arguments[256];
+  std::snprintf(arguments, sizeof arguments, "--y 3 --elements 30 --z %.6f --roll %.6e", field(pose_line, "z"),
+                field(pose_line, "roll"));
+  const auto fixed = run_wheelrail(arguments);
+  INFO(arguments << "\n" << fixed.output);
+  REQUIRE(fixed.status == 0);
+  std::istringstream fixed_lines(fixed.output);
+  std::string fixed_line, line;
+  std::getline(fixed_lines, fixed_line);
+  CHECK_THAT(fixed_line, Contains("mode=fixed-pose"));
+  // z printed to 1e-6 mm and roll to 7 digits: Fn moves by at most stiffness·1e-9 m ≈ 2 N.
+  CHECK(field(fixed_line, "vertical_force") == Approx(2e5).epsilon(5e-5));
+  int patches = 0;
+  while (std::getline(lines, line) && std::getline(fixed_lines, fixed_line)) {
+    ++patches;
+    CHECK(field(fixed_line, "fn") == Approx(field(line, "fn")).epsilon(5e-5));
+    CHECK(field(fixed_line, "ncontact") == field(line, "ncontact"));
+    CHECK(field(fixed_line, "y_track") == Approx(field(line, "y_track")).margin(1e-3));
+    CHECK(field(fixed_line, "stiffness") > 0);
+  }
+  CHECK(patches == 2);
+
+  const auto both = run_wheelrail("--z 0.1 --load 1e5");
+  CHECK(both.status == 2);
+  CHECK_THAT(both.output, Contains("--z and --load exclude each other"));
+  const auto nan = run_wheelrail("--z nan");
+  CHECK(nan.status == 2);
+  CHECK_THAT(nan.output, Contains("--z needs a number"));
 }
