@@ -10,6 +10,7 @@
 //   with --sequence, then for each case and solver (--sequence-solvers cg,elliptic,polynomial:4):
 //     sequence=<name> solver=<s> calls=<n> per_call_s=<t> cold_per_call_s=<t> speedup_warm=<x>
 //   fastnorm-bench --growth [--sizes 30,60,120,240,480] [--repeats 3]
+//   fastnorm-bench --trajectory [--steps 2000] [--trajectory-solvers norm,cg,...]: trajectory.hpp
 //     growth=hertz_<n>x<n> elements=<N> ncontact=<n> norm_s=<t> cg_s=<t> cg_iterations=<k>
 //          elliptic_s=<t> polynomial4_s=<t> max_rss_mb=<m>
 //
@@ -37,6 +38,7 @@
 #include <vector>
 
 #include "support/arguments.hpp"
+#include "trajectory.hpp"
 
 namespace {
 
@@ -217,8 +219,10 @@ struct Arguments {
   std::vector<std::string> cases;
   int repeats = 5, calls = 50;
   long norm_limit = 6000;
-  bool growth = false, sequence = false;
+  bool growth = false, sequence = false, trajectory = false;
+  int steps = 2000;
   std::vector<std::string> sequence_solvers{"cg", "elliptic", "polynomial:4"}, solvers;
+  std::vector<std::string> trajectory_solvers{"norm", "cg", "elliptic", "polynomial:4", "polynomial-edge:4:1"};
 };
 
 fastnorm_example::CommandLine command_line(Arguments& a) {
@@ -235,10 +239,17 @@ fastnorm_example::CommandLine command_line(Arguments& a) {
   line.option("--calls", a.calls, "N", "calls in a --sequence", at_least(1));
   line.flag("--growth", a.growth, "time Hertz grids of growing size");
   line.option("--sizes", a.sizes, "N,...", "--growth: elements across each grid", at_least(4));
+  line.flag("--trajectory", a.trajectory, "time the wheelset contact model along the 1 kHz trajectory instead");
+  line.option("--steps", a.steps, "N", "--trajectory: time steps (1 ms each)", at_least(3));
+  line.option("--trajectory-solvers", a.trajectory_solvers, "NAME,...", "--trajectory: the solvers, NORM first anyway");
   return line;
 }
 
 int run(const Arguments& a) {
+  if (a.trajectory) {
+    fastnorm_bench::bench_trajectory(a.trajectory_solvers, a.steps);
+    return 0;
+  }
   std::vector<std::string> extra_solvers;
   for (const auto& name : a.solvers) {
     const auto spec = fastnorm::SolverSpec<double>::parse(name);

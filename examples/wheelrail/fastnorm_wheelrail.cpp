@@ -15,7 +15,7 @@
 // Defaults: y = 0, yaw = 0, load = 200 kN on the wheelset (z and roll found), 60 elements
 // across the largest patch, solver norm. --fz with --wheel: CONTACT's single-wheel mode
 // (vertical force on that wheel, roll fixed by --roll, default 0). --z: contact at the pose
-// (y, z, roll, yaw) as given, no equilibrium (WheelsetContact, docs/wheel-rail.md §7), each
+// (y, z, roll, yaw) as given, no equilibrium (WheelsetContact, docs/wheel-rail.md §9), each
 // line with stiffness=<N/m> (dFn/dδ). --element-size: square elements of that size instead
 // of --elements. Each patch line:
 //   wheel=<left|right> patch=<k> fn=<N> ncontact=<n> pmax=<Pa> x_track=<mm> y_track=<mm>

@@ -111,7 +111,7 @@ class CgSolver : public detail::SolverBase<CgSolver<Scalar>, CgWorkspace<Scalar>
   /// The normal stiffness dFn/dδ (N/m) of the discrete problem at the contact set I of
   /// `solution`: area · 1ᵀ x with C_II x = 1, by conjugate gradients on I with C by FFT
   /// (C_II is symmetric positive definite), to a residual of options().tolerance relative
-  /// to 1 (docs/norm.md §5). NaN if that does not converge within max_iterations.
+  /// to 1 (docs/norm.md §4). NaN if that does not converge within max_iterations.
   Scalar normal_stiffness(const Solution<Scalar>& solution, Workspace& work) const {
     FASTNORM_CHECK(solution.in_contact.size() == grid().size(), "CgSolver::normal_stiffness: solution of another grid");
     prepare(work);

@@ -111,7 +111,7 @@ class NormSolver : public detail::SolverBase<NormSolver<Scalar>, NormWorkspace<S
 
   /// The normal stiffness dFn/dδ (N/m) of the discrete problem at the contact set of
   /// `solution`, the last solve in `workspace`: area · 1ᵀ C_II⁻¹ 1, by the Cholesky factor
-  /// that solve left (docs/norm.md §5). 0 without contact.
+  /// that solve left (docs/norm.md §4). 0 without contact.
   Scalar normal_stiffness(const Solution<Scalar>& solution, Workspace& workspace) const {
     FASTNORM_CHECK(solution.in_contact.size() == grid().size(), "NormSolver::normal_stiffness: solution of another grid");
     DenseSetSolver set_solver{*influence_, workspace.factorisation_};

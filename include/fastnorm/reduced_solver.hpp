@@ -105,7 +105,7 @@ class ReducedSolver : public detail::SolverBase<ReducedSolver<Basis, Scalar>, Re
 
   /// The normal stiffness dFn/dδ (N/m) of the reduced problem at the contact set of
   /// `solution`, the last solve in `workspace`: area · 1ᵀ A (Aᵀ C_II A)⁻¹ Aᵀ 1, by the factor
-  /// that solve left (docs/norm.md §5). 0 without contact.
+  /// that solve left (docs/norm.md §4). 0 without contact.
   Scalar normal_stiffness(const Solution<Scalar>& solution, Workspace& workspace) const {
     FASTNORM_CHECK(solution.in_contact.size() == grid().size(), "ReducedSolver::normal_stiffness: solution of another grid");
     FASTNORM_CHECK(workspace.owner_ == id_, "ReducedSolver::normal_stiffness: the workspace holds another solver's solve");

@@ -1,4 +1,4 @@
-// The normal stiffness dFn/dδ of every solver (docs/norm.md §5) against the derivative of
+// The normal stiffness dFn/dδ of every solver (docs/norm.md §4) against the derivative of
 // the same discrete model by central differences, and against Hertz theory.
 #include <catch2/catch.hpp>
 #include <fastnorm/fastnorm.hpp>

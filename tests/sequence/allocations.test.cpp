@@ -9,26 +9,11 @@
 #include <fastnorm/any_solver.hpp>
 #include <fastnorm/hertz.hpp>
 
-#include <atomic>
 #include <cstddef>
 #include <string>
 #include <vector>
 
-namespace {
-std::atomic<long> allocation_count{0};
-}  // namespace
-
-// The linker sends this executable's calls of malloc and operator new (_Znwm) here.
-extern "C" void* __real_malloc(std::size_t size);  // NOLINT: the linker's names
-extern "C" void* __wrap_malloc(std::size_t size) {
-  allocation_count.fetch_add(1, std::memory_order_relaxed);
-  return __real_malloc(size);
-}
-extern "C" void* __real__Znwm(std::size_t size);
-extern "C" void* __wrap__Znwm(std::size_t size) {
-  allocation_count.fetch_add(1, std::memory_order_relaxed);
-  return __real__Znwm(size);
-}
+#include "support/allocation_counter.hpp"
 
 namespace {
 
@@ -36,9 +21,9 @@ const fastnorm::Material<> steel(2.1e11, 0.3);
 
 template <typename Call>
 long allocations_of(const Call& call) {
-  const long before = allocation_count.load();
+  const long before = fastnorm_example::allocation_count();
   call();
-  return allocation_count.load() - before;
+  return fastnorm_example::allocation_count() - before;
 }
 
 /// A Hertz indenter, tilted by `tilt` (rad), so two problems take different active sets.

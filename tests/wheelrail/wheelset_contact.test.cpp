@@ -5,6 +5,7 @@
 #include <catch2/catch.hpp>
 #include <fastnorm/fastnorm.hpp>
 
+#include <Eigen/Geometry>  // cross
 #include <array>
 #include <cmath>
 #include <filesystem>

@@ -241,7 +241,7 @@ Solution<Scalar> solve_active_set(const InfluenceTable<Scalar>& influence,
   return ActiveSetLoop<Scalar, SetSolver>(influence, h, loading, options, set_solver, work).run(start_set);
 }
 
-/// dFn/dδ at the contact set of `solution` (docs/norm.md §5): on a fixed set I the
+/// dFn/dδ at the contact set of `solution` (docs/norm.md §4): on a fixed set I the
 /// pressures are p_I = S⁻¹(δ − h_I) with S the set solver's operator (C_II, or its Galerkin
 /// projection), so dFn/dδ = area · Σ S⁻¹ 1. One more solve on the set, which reuses the
 /// factor the loop left when the set is the last one it solved.

@@ -1,6 +1,6 @@
 #pragma once
 /// @file wheelset_contact.hpp
-/// Contact in the time loop (docs/wheel-rail.md §7): a wheelset contact model that a
+/// Contact in the time loop (docs/wheel-rail.md §9): a wheelset contact model that a
 /// vehicle-dynamics code calls at every step with the wheelset's pose and that returns
 /// every wheel's patches, forces, moments and normal stiffness. It keeps its state between
 /// calls: fixed element sizes, one solver per grid size (influence and segment tables
@@ -8,7 +8,6 @@
 /// the new grid to start the next solve.
 
 #include <Eigen/Core>
-#include <Eigen/Geometry>  // cross
 #include <algorithm>
 #include <array>
 #include <chrono>
@@ -41,7 +40,7 @@ struct WheelsetContactOptions {
   std::optional<WheelsetPose> reference_pose;
   double reference_approach = 0.1e-3;  ///< m
   /// Patch grids on a lattice of the element sizes that moves with each patch only by whole
-  /// elements (§7): consecutive grids differ by whole elements and the previous contact set
+  /// elements (docs/wheel-rail.md §9): consecutive grids differ by whole elements and the previous contact set
   /// maps onto the new grid exactly. Off: each grid is centred on its patch's contact
   /// reference point, as the equilibrium does.
   bool snap_to_lattice = true;
@@ -50,7 +49,7 @@ struct WheelsetContactOptions {
   bool warm_start = true;
   /// The same for the reduced solvers, whose answer depends on the path of the active set:
   /// off by default, since a warm start measured larger contact-set differences from NORM
-  /// than the cold path (docs/performance.md §7); off, they follow the cold path and reuse
+  /// than the cold path (docs/performance.md §8); off, they follow the cold path and reuse
   /// the assemblies of their previous solve where the grid is unchanged.
   bool reduced_warm_start = false;
   bool stiffness = true;  ///< compute each patch's dFn/dδ (one extra solve with the last factor)
@@ -155,13 +154,19 @@ struct PatchState {
   Workspace workspace;
 };
 
+/// a × b. By hand: Eigen's cross() lives in <Eigen/Geometry>, which adds about 0.2 s and
+/// 19 MB to every file that includes fastnorm.hpp (docs/contributing.md, compile cost).
+inline Eigen::Vector3d cross(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+  return {a.y() * b.z() - a.z() * b.y(), a.z() * b.x() - a.x() * b.z(), a.x() * b.y() - a.y() * b.x()};
+}
+
 inline double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
 }  // namespace detail
 
-/// The contact model of one wheelset on its track (docs/wheel-rail.md §7).
+/// The contact model of one wheelset on its track (docs/wheel-rail.md §9).
 ///
 /// **Example**
 /// @code
@@ -308,7 +313,7 @@ class WheelsetContact {
   }
 
   /// The patch's frame and grid. On the lattice, the frame's origin is the first
-  /// predecessor's moved by whole elements towards the new reference point (docs/wheel-rail.md §7).
+  /// predecessor's moved by whole elements towards the new reference point (docs/wheel-rail.md §9).
   void place_grid(const ContactRegion& region, const std::vector<std::size_t>& predecessors,
                   const std::vector<State>& previous, State& state) const {
     state.frame = patch_frame(track_, region);
@@ -380,7 +385,7 @@ class WheelsetContact {
     }
     out.pressure_centre = patch.frame.reference + x_mean * Eigen::Vector3d::UnitX() + s_mean * patch.frame.lateral_axis();
     out.force = -out.normal_force * patch.frame.normal();
-    out.moment = (out.pressure_centre - wheelset_.centre(pose)).cross(out.force);
+    out.moment = detail::cross(out.pressure_centre - wheelset_.centre(pose), out.force);
     out.stiffness = options_.stiffness && solution.ok() ? solver.normal_stiffness(solution, state.workspace)
                                                         : std::nan("");
   }

@@ -1,0 +1,140 @@
+// fastnorm-bench --trajectory: the wheelset contact model along a time history, geometry
+// included (docs/performance.md §8). y(t) = 5 mm·sin(2π·1 Hz·t), yaw ψ(t) = 3 mrad·cos(2π·1 Hz·t),
+// z(t) and roll(t) the rigid two-wheel contact at (y, ψ) lowered by 0.1 mm plus
+// 20 µm·sin(2π·8 Hz·t), at 1 kHz; element sizes what 60 elements give at y = 0 (the model's
+// default reference pose). One line per solver:
+//
+//   trajectory solver=<name> steps=<n> search_us=<t> h_us=<t> solve_us=<t> total_us=<t>
+//     total_p99_us=<t> max_err_vs_norm=<x> max_set_diff=<n> roughness=<x> roughness_norm=<x>
+//     allocations_per_step=<x>
+//
+// Times are medians per wheel per step (p99 of the total); errors and contact-set
+// differences against NORM on the same h at every 20th step (NORM runs first, on the same
+// grids: the grids depend on the geometry only); roughness = the largest
+// |Fn(t+1) − 2Fn(t) + Fn(t−1)| / Fn(t) of a wheel's total normal force; allocations per
+// step after the first ten (-1: not counted in this build).
+#pragma once
+
+#include <fastnorm/fastnorm.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "support/allocation_counter.hpp"
+
+namespace fastnorm_bench {
+
+namespace wr = fastnorm::wheelrail;
+
+inline std::vector<wr::WheelsetPose> trajectory_poses(const wr::Track& track, const wr::Wheelset& wheelset, int steps) {
+  std::vector<wr::WheelsetPose> poses;
+  for (int step = 0; step < steps; ++step) {
+    const double t = 1e-3 * step;
+    auto pose = wr::rigid_contact_pose(track, wheelset, 5e-3 * std::sin(2 * M_PI * t), 3e-3 * std::cos(2 * M_PI * t));
+    pose.z += 0.1e-3 + 20e-6 * std::sin(2 * M_PI * 8 * t);
+    poses.push_back(pose);
+  }
+  return poses;
+}
+
+/// What one solver's run records.
+struct TrajectoryRun {
+  std::vector<double> search, distance, solve, total;  // s, per wheel per step
+  std::vector<std::array<double, 2>> wheel_force;       // Σ Fn per wheel, per step
+  std::vector<std::vector<fastnorm::Solution<double>>> checked;  // every 20th step: the patches' solutions
+  double allocations_per_step = -1;
+};
+
+inline constexpr int check_every = 20;
+
+inline TrajectoryRun run_trajectory(const wr::Track& track, const wr::Wheelset& wheelset,
+                                    const std::vector<wr::WheelsetPose>& poses, const std::string& solver) {
+  wr::WheelsetContactOptions options;
+  options.solver = fastnorm::SolverSpec<double>::parse(solver);
+  wr::WheelsetContact<> contact(track, wheelset, options);
+  TrajectoryRun run;
+  long allocations_before = 0;
+  for (std::size_t step = 0; step < poses.size(); ++step) {
+    if (step == 10) allocations_before = fastnorm_example::allocation_count();
+    const auto& result = contact.evaluate(poses[step]);
+    std::array<double, 2> force{};
+    for (std::size_t w = 0; w < 2; ++w) {
+      const auto& wheel = result.wheels[w];
+      run.search.push_back(wheel.times.search);
+      run.distance.push_back(wheel.times.distance);
+      run.solve.push_back(wheel.times.solve);
+      run.total.push_back(wheel.times.search + wheel.times.distance + wheel.times.solve);
+      force[w] = wheel.normal_force;
+    }
+    run.wheel_force.push_back(force);
+    if (step % check_every == 0) {
+      std::vector<fastnorm::Solution<double>> solutions;
+      for (const auto& wheel : result.wheels) {
+        for (const auto& patch : wheel.patches) solutions.push_back(patch.solution);
+      }
+      run.checked.push_back(std::move(solutions));
+    }
+  }
+  if (poses.size() > 10 && allocations_before >= 0) {
+    run.allocations_per_step = static_cast<double>(fastnorm_example::allocation_count() - allocations_before) /
+                               static_cast<double>(poses.size() - 10);
+  }
+  return run;
+}
+
+inline double quantile(std::vector<double> values, double q) {
+  std::sort(values.begin(), values.end());
+  const auto at = static_cast<std::size_t>(q * static_cast<double>(values.size() - 1) + 0.5);
+  return values[std::min(at, values.size() - 1)];
+}
+
+inline double roughness(const TrajectoryRun& run) {
+  double largest = 0;
+  for (std::size_t t = 1; t + 1 < run.wheel_force.size(); ++t) {
+    for (std::size_t w = 0; w < 2; ++w) {
+      const double force = run.wheel_force[t][w];
+      if (force <= 0) continue;
+      const double second = run.wheel_force[t + 1][w] - 2 * force + run.wheel_force[t - 1][w];
+      largest = std::max(largest, std::abs(second) / force);
+    }
+  }
+  return largest;
+}
+
+/// Runs NORM first (the reference), then every solver of `solvers`, and prints their lines.
+inline void bench_trajectory(const std::vector<std::string>& solvers, int steps) {
+  const wr::Track track;
+  const wr::Wheelset wheelset;
+  const auto poses = trajectory_poses(track, wheelset, steps);
+  const TrajectoryRun norm = run_trajectory(track, wheelset, poses, "norm");
+  for (const auto& name : solvers) {
+    const TrajectoryRun run = name == "norm" ? norm : run_trajectory(track, wheelset, poses, name);
+    double max_error = 0;
+    long max_set_diff = 0;
+    for (std::size_t c = 0; c < run.checked.size(); ++c) {
+      const auto& ours = run.checked[c];
+      const auto& reference = norm.checked[c];
+      if (ours.size() != reference.size()) {  // patches differ: cannot happen on the same geometry
+        max_error = std::nan("");
+        continue;
+      }
+      for (std::size_t k = 0; k < ours.size(); ++k) {
+        max_error = std::max(max_error, std::abs(ours[k].normal_force / reference[k].normal_force - 1));
+        max_set_diff = std::max(max_set_diff, static_cast<long>((ours[k].in_contact != reference[k].in_contact).count()));
+      }
+    }
+    std::printf("trajectory solver=%s steps=%d search_us=%.1f h_us=%.1f solve_us=%.1f total_us=%.1f total_p99_us=%.1f "
+                "max_err_vs_norm=%.3e max_set_diff=%ld roughness=%.3e roughness_norm=%.3e allocations_per_step=%.2f\n",
+                fastnorm::SolverSpec<double>::parse(name).name().c_str(), steps, 1e6 * quantile(run.search, 0.5),
+                1e6 * quantile(run.distance, 0.5), 1e6 * quantile(run.solve, 0.5), 1e6 * quantile(run.total, 0.5),
+                1e6 * quantile(run.total, 0.99), max_error, max_set_diff, roughness(run), roughness(norm),
+                run.allocations_per_step);
+    std::fflush(stdout);
+  }
+}
+
+}  // namespace fastnorm_bench
