@@ -163,3 +163,34 @@ TEST_CASE("Our h on CONTACT's grids matches CONTACT's h on every wr_* peer case"
   WARN("wr_* peer cases: max |h - h_CONTACT| " << worst_h * 1e6 << " um, max |y_ref - YCP| " << worst_y
                                                << " mm, max |delta - DELTCP| " << worst_delta << " rad");
 }
+
+TEST_CASE("The contact search samples near contact exactly as the full sampling", "[wheelrail][geometry]") {
+  const wr::Track track;
+  const wr::Wheelset wheelset;
+  int poses = 0, penetrating = 0, different = 0;
+  for (double y = -8e-3; y <= 8e-3; y += 1e-3) {
+    for (double yaw : {-8e-3, 0.0, 5e-3}) {
+      const auto rigid = wr::rigid_contact_pose(track, wheelset, y, yaw);
+      for (double lowered : {0.0, 0.05e-3, 0.2e-3, 0.5e-3}) {
+        wr::WheelsetPose pose = rigid;
+        pose.z += lowered;
+        for (wr::Side side : {wr::Side::left, wr::Side::right}) {
+          const auto full = wr::sample_gap(track, wheelset, side, pose);
+          const auto near = wr::sample_gap_near_contact(track, wheelset, side, pose);
+          REQUIRE(full.size() == near.size());
+          ++poses;
+          for (std::size_t k = 0; k < full.size(); ++k) {
+            // Every penetrating sample is taken, and with the full sampling's value.
+            if (full[k].gap < 0 || near[k].gap < 0) {
+              ++penetrating;
+              if (near[k].gap != full[k].gap) ++different;
+            }
+          }
+        }
+      }
+    }
+  }
+  CHECK(poses == 17 * 3 * 4 * 2);
+  CHECK(penetrating > 1000);
+  CHECK(different == 0);
+}

@@ -148,7 +148,12 @@ namespace detail {
 template <typename Workspace>
 struct PatchState {
   PatchFrame frame;               ///< the grid's frame
+  PatchFrame anchor;              ///< the lattice's origin: the frame where the patch appeared
   Eigen::Vector3d centre;         ///< the contact reference point (matching)
+  /// The grid on the lattice: its element (0, 0) is lattice point (box_i, box_j) from the
+  /// anchor, in elements; while the patch stays inside, the box (and so the numbering of
+  /// the elements, the solver and the workspace's start) is kept.
+  Eigen::Index box_i = 0, box_j = 0;
   Grid<double> grid{1, 1, 1, 1};
   std::vector<Eigen::Index> contact_set;
   Workspace workspace;
@@ -312,22 +317,53 @@ class WheelsetContact {
     return predecessors;
   }
 
-  /// The patch's frame and grid. On the lattice, the frame's origin is the first
-  /// predecessor's moved by whole elements towards the new reference point (docs/wheel-rail.md §9).
+  /// The patch's frame and grid. On the lattice, the frame's origin is the anchor (where the
+  /// patch appeared) moved by whole elements towards the new reference point, and the grid
+  /// keeps its predecessor's box while the patch's extent stays inside it
+  /// (docs/wheel-rail.md §9).
   void place_grid(const ContactRegion& region, const std::vector<std::size_t>& predecessors,
                   const std::vector<State>& previous, State& state) const {
     state.frame = patch_frame(track_, region);
     state.centre = region.centre;
-    if (options_.snap_to_lattice && !predecessors.empty()) {
-      const PatchFrame& anchor = previous[predecessors.front()].frame;
-      const Eigen::Vector3d offset = region.centre - anchor.reference;
-      const double x = anchor.reference.x() + std::round(offset.x() / dx_) * dx_;
-      const double s = std::round(offset.dot(anchor.lateral_axis()) / ds_) * ds_;
-      const double y = anchor.reference.y() + s * anchor.lateral_axis().y();
-      state.frame.reference = {x, y, anchor.reference.z() + s * anchor.lateral_axis().z()};
-      if (const auto rail = track_.rail_height(region.side, y)) state.frame.reference.z() = rail->value;
+    if (!options_.snap_to_lattice) {
+      state.grid = patch_grid(patch_extent(state.frame, region), dx_, ds_);
+      return;
     }
-    state.grid = patch_grid(patch_extent(state.frame, region), dx_, ds_);
+    const State* kept = predecessors.size() == 1 ? &previous[predecessors.front()] : nullptr;
+    state.anchor = predecessors.empty() ? state.frame : previous[predecessors.front()].anchor;
+    const Eigen::Vector3d along = state.anchor.lateral_axis();
+    const Eigen::Vector3d offset = region.centre - state.anchor.reference;
+    const double a = std::round(offset.x() / dx_), b = std::round(offset.dot(along) / ds_);
+    state.frame.reference = state.anchor.reference + a * dx_ * Eigen::Vector3d::UnitX() + b * ds_ * along;
+    if (const auto rail = track_.rail_height(region.side, state.frame.reference.y())) {
+      state.frame.reference.z() = rail->value;
+    }
+    // The lattice box the extent needs, with the guard elements of patch_grid.
+    const Grid<double> needed = patch_grid(patch_extent(state.frame, region), dx_, ds_);
+    const auto first_i = static_cast<Eigen::Index>(std::lround(needed.x0() / dx_ + a));
+    const auto first_j = static_cast<Eigen::Index>(std::lround(needed.y0() / ds_ + b));
+    const bool fits = kept && first_i >= kept->box_i && first_j >= kept->box_j &&
+                      first_i + needed.mx() <= kept->box_i + kept->grid.mx() &&
+                      first_j + needed.my() <= kept->box_j + kept->grid.my();
+    Eigen::Index mx = needed.mx(), my = needed.my();
+    if (fits) {
+      state.box_i = kept->box_i, state.box_j = kept->box_j;
+      mx = kept->grid.mx(), my = kept->grid.my();
+    } else {  // a new box, with room to move before the next
+      state.box_i = first_i - box_margin, state.box_j = first_j - box_margin;
+      mx += 2 * box_margin, my += 2 * box_margin;
+    }
+    state.grid = Grid<double>(mx, my, dx_, ds_, (static_cast<double>(state.box_i) - a) * dx_,
+                              (static_cast<double>(state.box_j) - b) * ds_);
+  }
+
+  /// Whether a patch's grid numbers its elements as its only predecessor's did.
+  static bool same_box(const State& state, const std::vector<std::size_t>& predecessors,
+                       const std::vector<State>& previous) {
+    if (predecessors.size() != 1) return false;
+    const State& from = previous[predecessors.front()];
+    return from.box_i == state.box_i && from.box_j == state.box_j && from.grid.mx() == state.grid.mx() &&
+           from.grid.my() == state.grid.my();
   }
 
   /// The starting contact set of a patch: its predecessors' sets mapped element by element
@@ -339,6 +375,8 @@ class WheelsetContact {
       state.workspace.start().clear();
       return;
     }
+    // The same box: the workspace's own start (NORM's set, CG's pressures) is in place.
+    if (options_.snap_to_lattice && same_box(state, predecessors, previous)) return;
     std::vector<Eigen::Index> set;
     const Eigen::Vector3d lateral = state.frame.lateral_axis();
     for (std::size_t p : predecessors) {
@@ -399,6 +437,9 @@ class WheelsetContact {
     solvers_.emplace_back(options_.solver, grid, material_);
     return solvers_.back();
   }
+
+  /// Elements added on every side when a patch needs a new box.
+  static constexpr Eigen::Index box_margin = 2;
 
   const Track& track_;
   const Wheelset& wheelset_;
