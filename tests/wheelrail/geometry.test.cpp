@@ -194,3 +194,62 @@ TEST_CASE("The contact search samples near contact exactly as the full sampling"
   CHECK(penetrating > 1000);
   CHECK(different == 0);
 }
+
+namespace {
+
+// h at one element by plain bisection of G(t) = √(x_w² + z_w²) − ρ(y_w) along the normal
+// (docs/wheel-rail.md §4), independent of undeformed_distance's Newton and bracketing.
+double bisected_distance(const wr::Track& track, const wr::Wheelset& wheelset, const wr::WheelsetPose& pose,
+                         const wr::PatchFrame& frame, double x, double s) {
+  const Eigen::Vector3d normal = frame.normal();
+  const Eigen::Vector3d point = frame.reference + x * Eigen::Vector3d::UnitX() + s * frame.lateral_axis();
+  const auto rail = track.distance_to_rail(frame.side, point.y(), point.z(), normal.y(), normal.z());
+  const Eigen::Matrix3d rotation = wr::Wheelset::rotation(pose);
+  auto excess = [&](double t) {
+    const Eigen::Vector3d p = rotation.transpose() * (point + t * normal - wheelset.centre(pose));
+    const auto profile_y = wheelset.profile_coordinate(frame.side, p.y());
+    return profile_y ? std::hypot(p.x(), p.z()) - wheelset.radius(frame.side, *profile_y).value : std::nan("");
+  };
+  double low = wr::NormalSearch::below, high = wr::NormalSearch::above;
+  if (!rail || !(excess(low) < 0) || !(excess(high) > 0)) return std::nan("");
+  for (int step = 0; step < 200 && high - low > 1e-15; ++step) {
+    const double middle = (low + high) / 2;
+    (excess(middle) < 0 ? low : high) = middle;
+  }
+  return *rail - (low + high) / 2;
+}
+
+}  // namespace
+
+TEST_CASE("The undeformed distance is exact to 1 nm on many poses", "[wheelrail][geometry]") {
+  const wr::Track track;
+  const wr::Wheelset wheelset;
+  double worst = 0;
+  long elements = 0;
+  for (double y : {-6e-3, -2e-3, 0.0, 3e-3, 7e-3}) {
+    for (double yaw : {-5e-3, 0.0, 8e-3}) {
+      auto pose = wr::rigid_contact_pose(track, wheelset, y, yaw);
+      pose.z += 0.1e-3;
+      for (wr::Side side : {wr::Side::left, wr::Side::right}) {
+        for (const auto& region : wr::contact_regions(track, wheelset, side, pose)) {
+          const auto frame = wr::patch_frame(track, region);
+          const auto extent = wr::patch_extent(frame, region);
+          const auto grid = wr::patch_grid(extent, (extent.x_high - extent.x_low) / 20, (extent.s_high - extent.s_low) / 20);
+          const Eigen::VectorXd h = wr::undeformed_distance(track, wheelset, pose, frame, grid);
+          for (Eigen::Index k = 0; k < grid.size(); ++k) {
+            const double expected = bisected_distance(track, wheelset, pose, frame, grid.x_of(k), grid.y_of(k));
+            if (std::isnan(expected)) {
+              CHECK(h(k) == wr::no_surface_gap);
+              continue;
+            }
+            worst = std::max(worst, std::abs(h(k) - expected));
+            ++elements;
+          }
+        }
+      }
+    }
+  }
+  CHECK(elements > 5000);
+  CHECK(worst <= 1e-9);
+  WARN("undeformed distance against bisection on " << elements << " elements: largest difference " << worst << " m");
+}

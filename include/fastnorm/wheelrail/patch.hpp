@@ -79,6 +79,7 @@ inline Eigen::VectorXd undeformed_distance(const Track& track, const Wheelset& w
     const Eigen::Vector3d row_point = frame.reference + grid.y(j) * lateral;
     const auto rail = track.distance_to_rail(frame.side, row_point.y(), row_point.z(), normal.y(), normal.z());
     double guess = rail ? *rail : 0;
+    bool found_in_row = false;  // guess is the previous element's root
     for (Eigen::Index i = 0; i < grid.mx(); ++i) {
       const Eigen::Vector3d from_centre = rotation.transpose() * (row_point + grid.x(i) * Eigen::Vector3d::UnitX() - centre);
       // G(t) = √(x_w² + z_w²) − ρ(y_w(t)): negative inside the wheel, rising along n.
@@ -97,17 +98,31 @@ inline Eigen::VectorXd undeformed_distance(const Track& track, const Wheelset& w
             (p.x() * normal_in_wheelset.x() + p.z() * normal_in_wheelset.z()) / distance - rho.slope * normal_in_wheelset.y()};
       };
       const double low = NormalSearch::below, high = NormalSearch::above;
+      // Fast path: Newton from the previous element's root (the surface moves little along a
+      // row), taken when it converges on the profile; else the bracketed search.
+      if (rail && found_in_row) {
+        const auto root = detail::newton_root(radial_excess, guess, low, high, NormalSearch::tolerance);
+        if (root && !off_profile) {
+          guess = *root;
+          h(grid.index(i, j)) = *rail - *root;
+          continue;
+        }
+        off_profile = false;
+      }
       const double at_low = radial_excess(low).value, at_high = radial_excess(high).value;
       if (!rail || off_profile || (at_low < 0) == (at_high < 0)) {
         h(grid.index(i, j)) = no_surface_gap;
+        found_in_row = false;
         continue;
       }
       const double wheel = detail::bracketed_root(radial_excess, low, high, guess, NormalSearch::tolerance);
       if (off_profile) {
         h(grid.index(i, j)) = no_surface_gap;
+        found_in_row = false;
         continue;
       }
       guess = wheel;
+      found_in_row = true;
       h(grid.index(i, j)) = *rail - wheel;
     }
   }

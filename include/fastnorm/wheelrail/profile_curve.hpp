@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <functional>
+#include <optional>
 #include <utility>
 
 #include "fastnorm/error.hpp"
@@ -70,6 +71,22 @@ double bracketed_root(Function f, double low, double high, double guess, double 
     x = next;
   }
   return x;
+}
+
+/// Root of f by Newton's method from `x` when that converges quickly: at most 8 steps, each
+/// inside (low, high); empty otherwise (then bracketed_root). The fast path of a root near
+/// a known one (undeformed_distance along a row of elements).
+template <typename Function>
+std::optional<double> newton_root(Function f, double x, double low, double high, double tolerance) {
+  for (int step = 0; step < 8; ++step) {
+    const auto here = f(x);
+    if (here.slope == 0) return std::nullopt;
+    const double next = x - here.value / here.slope;
+    if (!(next > low && next < high)) return std::nullopt;
+    if (std::abs(next - x) <= tolerance / 4) return next;
+    x = next;
+  }
+  return std::nullopt;
 }
 
 /// Minimum of a unimodal f on [low, high] by golden-section search (to `tolerance` in x).
