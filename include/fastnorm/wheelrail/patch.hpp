@@ -5,6 +5,7 @@
 
 #include <Eigen/Core>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <optional>
 
@@ -64,29 +65,37 @@ struct ContactPatch {
 /// Gap value where a grid point has no wheel or rail surface along its normal (m).
 inline constexpr double no_surface_gap = 1.0;
 
+/// Along a row, the wheel's root is extrapolated from the previous elements' roots and
+/// accepted after one Newton step that moves it by at most this much (m). Newton's error
+/// after that step is about |G''/2G'|·step², and |G''/2G'| stays below about 100 /m for the
+/// profiles' curvatures: at most 4e-12 m (docs/wheel-rail.md §4, tested against bisection).
+inline constexpr double one_step_acceptance = 2e-7;
+
 /// The exact undeformed distance h = n_rail − n_wheel at every element centre of `grid`
 /// (docs/wheel-rail.md §4, item 6): the rail along the normal line through
 /// q = P_ref + x e_x + s t_s by a 2-D intersection, the wheel by solving
-/// √(x_w² + z_w²) = ρ(y_w) in wheelset coordinates.
-inline Eigen::VectorXd undeformed_distance(const Track& track, const Wheelset& wheelset, const WheelsetPose& pose,
-                                           const PatchFrame& frame, const Grid<double>& grid) {
+/// √(x_w² + z_w²) = ρ(y_w) in wheelset coordinates. `h` is resized to the grid.
+inline void undeformed_distance(const Track& track, const Wheelset& wheelset, const WheelsetPose& pose,
+                                const PatchFrame& frame, const Grid<double>& grid, Eigen::VectorXd& h) {
   const Eigen::Vector3d lateral = frame.lateral_axis(), normal = frame.normal();
   const Eigen::Matrix3d rotation = Wheelset::rotation(pose);
   const Eigen::Vector3d centre = wheelset.centre(pose);
   const Eigen::Vector3d normal_in_wheelset = rotation.transpose() * normal;
-  Eigen::VectorXd h(grid.size());
+  const Eigen::Vector3d step_in_wheelset = rotation.transpose() * Eigen::Vector3d::UnitX() * grid.dx();
+  h.resize(grid.size());
   for (Eigen::Index j = 0; j < grid.my(); ++j) {
     const Eigen::Vector3d row_point = frame.reference + grid.y(j) * lateral;
     const auto rail = track.distance_to_rail(frame.side, row_point.y(), row_point.z(), normal.y(), normal.z());
-    double guess = rail ? *rail : 0;
-    bool found_in_row = false;  // guess is the previous element's root
+    const Eigen::Vector3d row_start = rotation.transpose() * (row_point + grid.x(0) * Eigen::Vector3d::UnitX() - centre);
+    std::array<double, 3> roots{};  // the last roots of this row, newest first
+    int known = 0;                  // how many of them are the previous elements'
     for (Eigen::Index i = 0; i < grid.mx(); ++i) {
-      const Eigen::Vector3d from_centre = rotation.transpose() * (row_point + grid.x(i) * Eigen::Vector3d::UnitX() - centre);
+      const Eigen::Vector3d from_centre = row_start + static_cast<double>(i) * step_in_wheelset;
       // G(t) = √(x_w² + z_w²) − ρ(y_w(t)): negative inside the wheel, rising along n.
       bool off_profile = false;
       auto radial_excess = [&](double t) {
         const Eigen::Vector3d p = from_centre + t * normal_in_wheelset;
-        const double distance = std::hypot(p.x(), p.z());
+        const double distance = std::sqrt(p.x() * p.x() + p.z() * p.z());  // metres: no overflow
         const auto profile_y = wheelset.profile_coordinate(frame.side, p.y());
         if (!profile_y) {
           off_profile = true;
@@ -98,34 +107,56 @@ inline Eigen::VectorXd undeformed_distance(const Track& track, const Wheelset& w
             (p.x() * normal_in_wheelset.x() + p.z() * normal_in_wheelset.z()) / distance - rho.slope * normal_in_wheelset.y()};
       };
       const double low = NormalSearch::below, high = NormalSearch::above;
-      // Fast path: Newton from the previous element's root (the surface moves little along a
-      // row), taken when it converges on the profile; else the bracketed search.
-      if (rail && found_in_row) {
-        const auto root = detail::newton_root(radial_excess, guess, low, high, NormalSearch::tolerance);
-        if (root && !off_profile) {
-          guess = *root;
-          h(grid.index(i, j)) = *rail - *root;
-          continue;
+      auto accept = [&](double root) {
+        roots = {root, roots[0], roots[1]};
+        known = std::min(known + 1, 3);
+        h(grid.index(i, j)) = *rail - root;
+      };
+      // Fast path: the root extrapolated from the previous elements' (the surface moves
+      // smoothly along a row), one Newton step, more only if that step is not small.
+      if (rail && known > 0) {
+        const double guess = known == 3 ? 3 * roots[0] - 3 * roots[1] + roots[2]
+                             : known == 2 ? 2 * roots[0] - roots[1]
+                                          : roots[0];
+        const auto here = radial_excess(guess);
+        if (!off_profile && here.slope != 0) {
+          const double next = guess - here.value / here.slope;
+          std::optional<double> root;
+          if (std::abs(next - guess) <= one_step_acceptance && next > low && next < high) {
+            root = next;
+          } else {
+            root = detail::newton_root(radial_excess, next, low, high, NormalSearch::tolerance);
+          }
+          if (root && !off_profile) {
+            accept(*root);
+            continue;
+          }
         }
         off_profile = false;
       }
       const double at_low = radial_excess(low).value, at_high = radial_excess(high).value;
       if (!rail || off_profile || (at_low < 0) == (at_high < 0)) {
         h(grid.index(i, j)) = no_surface_gap;
-        found_in_row = false;
+        known = 0;
         continue;
       }
-      const double wheel = detail::bracketed_root(radial_excess, low, high, guess, NormalSearch::tolerance);
+      const double wheel = detail::bracketed_root(radial_excess, low, high, known > 0 ? roots[0] : *rail,
+                                                  NormalSearch::tolerance);
       if (off_profile) {
         h(grid.index(i, j)) = no_surface_gap;
-        found_in_row = false;
+        known = 0;
         continue;
       }
-      guess = wheel;
-      found_in_row = true;
-      h(grid.index(i, j)) = *rail - wheel;
+      accept(wheel);
     }
   }
+}
+
+/// The same, returned.
+inline Eigen::VectorXd undeformed_distance(const Track& track, const Wheelset& wheelset, const WheelsetPose& pose,
+                                           const PatchFrame& frame, const Grid<double>& grid) {
+  Eigen::VectorXd h;
+  undeformed_distance(track, wheelset, pose, frame, grid, h);
   return h;
 }
 

@@ -272,7 +272,7 @@ class WheelsetContact {
       auto& patch = wheel.patches[k].patch;
       patch.frame = next[k].frame;
       patch.grid = next[k].grid;
-      patch.undeformed_distance = undeformed_distance(track_, wheelset_, pose, patch.frame, patch.grid);
+      undeformed_distance(track_, wheelset_, pose, patch.frame, patch.grid, patch.undeformed_distance);
     }
     wheel.times.distance = detail::seconds_since(clock);
 
