@@ -144,6 +144,8 @@ struct WheelsetContactResult {
 
 namespace detail {
 
+inline constexpr std::size_t no_solver = static_cast<std::size_t>(-1);
+
 /// A patch's state kept from one call to the next.
 template <typename Workspace>
 struct PatchState {
@@ -156,6 +158,9 @@ struct PatchState {
   Eigen::Index box_i = 0, box_j = 0;
   Grid<double> grid{1, 1, 1, 1};
   std::vector<Eigen::Index> contact_set;
+  /// The model's solver of the grid's size, whose storage `workspace` holds; `no_solver`
+  /// once the workspace has moved on.
+  std::size_t solver = no_solver;
   Workspace workspace;
 };
 
@@ -206,6 +211,10 @@ class WheelsetContact {
   double element_length() const { return dx_; }
   double element_width() const { return ds_; }
 
+  /// How many solvers (grid sizes) the model has built so far: each holds its influence and
+  /// segment tables.
+  std::size_t solver_count() const { return solvers_.size(); }
+
   /// Contact of both wheels at `pose`; the result stays valid until the next call.
   /// @throws fastnorm::invalid_argument for a pose that is not finite or outside PoseLimits
   const WheelsetContactResult& evaluate(const WheelsetPose& pose) {
@@ -224,7 +233,10 @@ class WheelsetContact {
 
   /// The next evaluate starts cold: no previous patches, no contact sets (storage kept).
   void reset() {
-    for (auto& states : states_) states.clear();
+    for (auto& states : states_) {
+      keep_spare_workspaces(states);
+      states.clear();
+    }
   }
 
  private:
@@ -258,9 +270,11 @@ class WheelsetContact {
     auto clock = std::chrono::steady_clock::now();
     wheel.side = side;
     const auto regions = contact_regions(track_, wheelset_, side, pose, options_.search);
-    std::vector<State>& previous = states_[side == Side::right ? 1 : 0];
-    std::vector<State> next(regions.size());
-    const auto successors = match(regions, previous, wheel);
+    const std::size_t w = side == Side::right ? 1 : 0;
+    std::vector<State>& previous = states_[w];
+    std::vector<State>& next = next_states_[w];  // storage of the call before the last
+    next.resize(regions.size());
+    const auto& successors = match(regions, previous, wheel);
     for (std::size_t k = 0; k < regions.size(); ++k) {
       wheel.patches[k].centre = regions[k].centre;
       place_grid(regions[k], successors[k], previous, next[k]);
@@ -287,16 +301,20 @@ class WheelsetContact {
       wheel.moment += wheel.patches[k].moment;
       wheel.normal_force += wheel.patches[k].normal_force;
     }
-    previous = std::move(next);
+    keep_spare_workspaces(previous);
+    std::swap(previous, next);
     wheel.times.solve = detail::seconds_since(clock);
   }
 
   /// For each new region, the previous patches whose reference point lies within the
   /// separation distance of its own; sets each patch's history and the wheel's vanished count.
-  std::vector<std::vector<std::size_t>> match(const std::vector<ContactRegion>& regions,
-                                              const std::vector<State>& previous, WheelContact& wheel) const {
-    std::vector<std::vector<std::size_t>> predecessors(regions.size());
-    std::vector<int> successors(previous.size(), 0);
+  const std::vector<std::vector<std::size_t>>& match(const std::vector<ContactRegion>& regions,
+                                                     const std::vector<State>& previous, WheelContact& wheel) {
+    auto& predecessors = predecessors_;
+    predecessors.resize(regions.size());
+    for (auto& list : predecessors) list.clear();
+    auto& successors = successor_counts_;
+    successors.assign(previous.size(), 0);
     for (std::size_t k = 0; k < regions.size(); ++k) {
       for (std::size_t p = 0; p < previous.size(); ++p) {
         if ((regions[k].centre - previous[p].centre).norm() <= options_.search.separation_distance) {
@@ -368,8 +386,16 @@ class WheelsetContact {
 
   /// The starting contact set of a patch: its predecessors' sets mapped element by element
   /// onto its grid (a pure shift on the lattice); cold when it has none.
-  void start_from(const std::vector<std::size_t>& predecessors, std::vector<State>& previous, State& state) const {
-    if (!predecessors.empty()) state.workspace = std::move(previous[predecessors.front()].workspace);
+  void start_from(const std::vector<std::size_t>& predecessors, std::vector<State>& previous, State& state) {
+    // The workspace follows the patch while its grid keeps its size; otherwise the patch
+    // takes a spare one of its new size's solver (the storage of that size, no allocation).
+    state.solver = solver_for(state.grid);
+    if (!predecessors.empty() && previous[predecessors.front()].solver == state.solver) {
+      state.workspace = std::move(previous[predecessors.front()].workspace);
+      previous[predecessors.front()].solver = detail::no_solver;  // its workspace moved on
+    } else {
+      state.workspace = take_workspace(state.solver);
+    }
     const bool warm = options_.solver.is_reduced() ? options_.reduced_warm_start : options_.warm_start;
     if (!warm || predecessors.empty()) {
       state.workspace.start().clear();
@@ -397,7 +423,7 @@ class WheelsetContact {
 
   /// Solves one patch in approach control and fills its forces and stiffness.
   void solve_patch(const WheelsetPose& pose, State& state, PatchContact& out) {
-    const Solver& solver = solver_for(state.grid);
+    const Solver& solver = solvers_[state.solver].solver;
     auto& patch = out.patch;
     out.solution = solver.solve(patch.undeformed_distance, Loading<double>::approach(), state.workspace);
     const auto& solution = out.solution;
@@ -428,14 +454,32 @@ class WheelsetContact {
                                                         : std::nan("");
   }
 
-  /// The solver of a grid's size (solvers do not depend on the grid's origin).
-  const Solver& solver_for(const Grid<double>& grid) {
-    for (const auto& solver : solvers_) {
-      const auto& known = solver.grid();
-      if (known.mx() == grid.mx() && known.my() == grid.my()) return solver;
+  /// The number of the solver of a grid's size (solvers do not depend on the grid's origin).
+  std::size_t solver_for(const Grid<double>& grid) {
+    for (std::size_t s = 0; s < solvers_.size(); ++s) {
+      const auto& known = solvers_[s].solver.grid();
+      if (known.mx() == grid.mx() && known.my() == grid.my()) return s;
     }
-    solvers_.emplace_back(options_.solver, grid, material_);
-    return solvers_.back();
+    solvers_.push_back({Solver(options_.solver, grid, material_), {}});
+    return solvers_.size() - 1;
+  }
+
+  /// A spare workspace of solver `s`, or a new one.
+  Workspace take_workspace(std::size_t s) {
+    auto& spare = solvers_[s].spare;
+    if (spare.empty()) return Workspace();
+    Workspace workspace = std::move(spare.back());
+    spare.pop_back();
+    return workspace;
+  }
+
+  /// After a call: the workspaces of patches that vanished or changed size go back to their
+  /// solver's spares.
+  void keep_spare_workspaces(std::vector<State>& states) {
+    for (State& state : states) {
+      if (state.solver != detail::no_solver) solvers_[state.solver].spare.push_back(std::move(state.workspace));
+      state.solver = detail::no_solver;
+    }
   }
 
   /// Elements added on every side when a patch needs a new box.
@@ -446,8 +490,16 @@ class WheelsetContact {
   WheelsetContactOptions options_;
   Material<double> material_;
   double dx_ = 0, ds_ = 0;
-  std::vector<Solver> solvers_;             // one per grid size met (dx, ds fixed)
+  /// A solver and the workspaces with its storage that no patch holds at the moment.
+  struct SolverSlot {
+    Solver solver;
+    std::vector<Workspace> spare;
+  };
+  std::vector<SolverSlot> solvers_;         // one per grid size met (dx, ds fixed)
   std::array<std::vector<State>, 2> states_;  // per wheel (left, right), per patch
+  std::array<std::vector<State>, 2> next_states_;  // the same, being filled by a call
+  std::vector<std::vector<std::size_t>> predecessors_;  // of each new patch (match)
+  std::vector<int> successor_counts_;                  // of each previous patch (match)
   WheelsetContactResult result_;
 };
 
