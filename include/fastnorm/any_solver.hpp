@@ -46,6 +46,11 @@ class AnyWorkspace {
     if (model_) model_->forget();
     pending_.clear();
   }
+  /// Storage for the next solve's answer (see the workspace of each solver); dropped before
+  /// the first solve.
+  void recycle(Solution<Scalar>&& used) {
+    if (model_) model_->recycle(std::move(used));
+  }
 
  private:
   template <typename>
@@ -55,12 +60,14 @@ class AnyWorkspace {
     virtual ~Model() = default;
     virtual WarmStart<Scalar>& start() = 0;
     virtual void forget() = 0;
+    virtual void recycle(Solution<Scalar>&& used) = 0;
     virtual std::unique_ptr<Model> clone() const = 0;
   };
   template <typename Workspace>
   struct Holder final : Model {
     WarmStart<Scalar>& start() override { return workspace.start(); }
     void forget() override { workspace.forget(); }
+    void recycle(Solution<Scalar>&& used) override { workspace.recycle(std::move(used)); }
     std::unique_ptr<Model> clone() const override { return std::make_unique<Holder>(*this); }
     Workspace workspace;
   };

@@ -40,6 +40,10 @@ class CgWorkspace {
   const WarmStart<Scalar>& start() const { return start_; }
   /// The next solve is cold (storage kept).
   void forget() { start_.clear(); }
+  /// Storage for the next solve's answer: a Solution no longer needed (e.g. the previous
+  /// answer of a time loop), handed back so that the next solve fills it instead of
+  /// allocating its vectors.
+  void recycle(Solution<Scalar>&& used) { spare_solution_ = std::move(used); }
 
  private:
   friend class CgSolver<Scalar>;
@@ -49,6 +53,7 @@ class CgWorkspace {
   Vector pressure_, displacement_, gap_, direction_, product_;
   std::vector<Eigen::Index> corrected_;  // elements whose step was clipped or that joined
   std::vector<Scalar> sorted_distance_;  // of the force-control starting guess
+  Solution<Scalar> spare_solution_;      // storage for the next answer (recycle)
 };
 
 /// The Signorini problem g = h − δ + C p ≥ 0, p ≥ 0, g·p = 0 by bound-constrained
@@ -93,16 +98,15 @@ class CgSolver : public detail::SolverBase<CgSolver<Scalar>, CgWorkspace<Scalar>
     detail::check_problem(grid, undeformed_distance, loading);
     workspace.start_.check(grid.size());
     prepare(workspace);
-    Solution<Scalar> solution;
+    Solution<Scalar> solution = std::move(workspace.spare_solution_);
+    solution.clear(grid.size());
     if (loading.control == Control::approach && undeformed_distance.minCoeff() >= 0) {
-      solution.pressure = Vector::Zero(grid.size());
-      solution.in_contact = Solution<Scalar>::Mask::Constant(grid.size(), false);
       solution.status = Status::no_contact;
       solution.message = "no element has a negative undeformed distance";
     } else {
       Iteration iteration{*influence_, options_, undeformed_distance, loading, workspace};
       iteration.start();
-      solution = iteration.run();
+      iteration.run(solution);
     }
     workspace.start_.remember_pressure(solution);
     return solution;
@@ -201,8 +205,7 @@ class CgSolver : public detail::SolverBase<CgSolver<Scalar>, CgWorkspace<Scalar>
     }
 
     /// The loop: complementarity error judged only on a freshly computed C p.
-    Solution<Scalar> run() {
-      Solution<Scalar> solution;
+    void run(Solution<Scalar>& solution) {
       solution.status = Status::converged;
       solution.message = "complementarity error below tolerance";
       int iteration = 0;
@@ -226,12 +229,11 @@ class CgSolver : public detail::SolverBase<CgSolver<Scalar>, CgWorkspace<Scalar>
         take_step(step_length());
       }
       solution.pressure = p;
-      solution.in_contact = p.array() > Scalar(0);
+      solution.in_contact = p.array() > Scalar(0);  // same size: no allocation
       solution.normal_force = area * p.sum();
       solution.approach = force_control ? approach : Scalar(0);
       solution.iterations = iteration;
       solution.residual = error / (approach - deepest);
-      return solution;
     }
 
     /// The gap of the current pressures and, in force control, δ = its mean over the

@@ -38,6 +38,10 @@ class NormWorkspace {
     start_.clear();
     factorisation_.valid = false;
   }
+  /// Storage for the next solve's answer: a Solution no longer needed (e.g. the previous
+  /// answer of a time loop), handed back so that the next solve fills it instead of
+  /// allocating its vectors.
+  void recycle(Solution<Scalar>&& used) { loop_.spare_solution = std::move(used); }
 
  private:
   friend class NormSolver<Scalar>;

@@ -43,6 +43,10 @@ class ReducedWorkspace {
     memory_.recycle(memory_.path);
     memory_.recycle(memory_.last_path);
   }
+  /// Storage for the next solve's answer: a Solution no longer needed (e.g. the previous
+  /// answer of a time loop), handed back so that the next solve fills it instead of
+  /// allocating its vectors.
+  void recycle(Solution<Scalar>&& used) { loop_.spare_solution = std::move(used); }
 
  private:
   template <typename Basis, typename S>

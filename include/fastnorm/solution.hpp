@@ -85,6 +85,16 @@ struct Solution {
   std::string message;
 
   Eigen::Index contact_count() const { return in_contact.count(); }
+  /// Back to a default Solution on `elements` elements (zero pressures, no contact,
+  /// not_solved), keeping the storage: how a solver reuses a recycled answer.
+  void clear(Eigen::Index elements) {
+    status = Status::not_solved;
+    pressure.setZero(elements);
+    in_contact.setConstant(elements, false);
+    normal_force = approach = residual = 0;
+    iterations = 0;
+    message.clear();
+  }
   /// The pressures are a usable answer: converged, no contact, or a resolved cycle.
   bool ok() const {
     return status == Status::converged || status == Status::no_contact || status == Status::cycled;

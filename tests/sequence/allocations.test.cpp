@@ -1,6 +1,7 @@
 // No allocation inside the solve loop (docs/performance.md §3): once a solver has met its
 // largest problem, a solve allocates only its result, however many active-set iterations
-// it takes. The heap allocations of this test executable's own code are counted through
+// it takes, and nothing when the previous result is recycled; the wheelset contact model
+// allocates nothing per step. The heap allocations of this test executable's own code are counted through
 // the linker's --wrap of malloc (Eigen's allocator) and of operator new (the containers').
 #include <catch2/catch.hpp>
 
@@ -8,7 +9,9 @@
 
 #include <fastnorm/any_solver.hpp>
 #include <fastnorm/hertz.hpp>
+#include <fastnorm/wheelrail.hpp>
 
+#include <cmath>
 #include <cstddef>
 #include <string>
 #include <vector>
@@ -76,6 +79,58 @@ TEST_CASE("Solvers in a repeated sequence allocate only their results", "[sequen
       CHECK(allocations <= 4 * result_allocations);
     }
   }
+}
+
+TEST_CASE("With the last result recycled, a repeated sequence allocates nothing", "[sequence][allocation]") {
+  const auto hertz = fastnorm::hertz_from_force(0.3, 0.2, steel.combined_modulus(), 5e4);
+  const auto grid = fastnorm::hertz_grid(hertz, 16, 1.4);
+  const Eigen::VectorXd first = indenter(grid, 0.0), second = indenter(grid, 4e-4);
+  for (const char* name : {"norm", "cg", "elliptic", "polynomial:4"}) {
+    fastnorm::AnySolver<> solver(name, grid, steel);
+    fastnorm::AnyWorkspace<> workspace;
+    fastnorm::Solution<> result;
+    auto round = [&] {
+      for (const Eigen::VectorXd* h : {&first, &second}) {
+        workspace.recycle(std::move(result));
+        result = solver.solve(*h, fastnorm::Loading<>::approach(), workspace);
+      }
+    };
+    for (int warm_up = 0; warm_up < 3; ++warm_up) round();
+    const long allocations = allocations_of(round);
+    INFO(name);
+    REQUIRE(result.status == fastnorm::Status::converged);
+    CHECK(result.contact_count() > 0);
+    CHECK(allocations == 0);
+  }
+}
+
+TEST_CASE("The wheelset contact model allocates nothing per step after warm-up", "[sequence][allocation]") {
+  namespace wr = fastnorm::wheelrail;
+  const wr::Track track;
+  const wr::Wheelset wheelset;
+  // A hunting-like motion at 1 kHz (as the trajectory benchmark), geometry included.
+  std::vector<wr::WheelsetPose> poses;
+  for (int step = 0; step < 60; ++step) {
+    const double t = 1e-3 * step;
+    auto pose = wr::rigid_contact_pose(track, wheelset, 4e-3 * std::sin(2 * M_PI * t), 3e-3 * std::cos(2 * M_PI * t));
+    pose.z += 0.1e-3;
+    poses.push_back(pose);
+  }
+  wr::WheelsetContactOptions options;
+  options.solver = fastnorm::SolverSpec<>::parse("cg");
+  options.grid.elements = 20;
+  wr::WheelsetContact<> contact(track, wheelset, options);
+  for (std::size_t step = 0; step < 20; ++step) contact.evaluate(poses[step]);
+  double force = 0;
+  const long allocations = allocations_of([&] {
+    for (std::size_t step = 20; step < poses.size(); ++step) {
+      const auto& result = contact.evaluate(poses[step]);
+      REQUIRE(result.ok());
+      force += result.wheels[0].normal_force + result.wheels[1].normal_force;
+    }
+  });
+  CHECK(force > 0);
+  CHECK(allocations == 0);
 }
 
 #else

@@ -35,6 +35,7 @@ struct ActiveSetWorkspace {
   std::vector<Scalar> admissible_pressure;
   std::vector<Scalar> sorted_distance;    // of the force-control starting guess
   std::vector<char> is_active;            // per element of the grid
+  Solution<Scalar> spare_solution;        // storage for the next answer (workspace.recycle)
 
   /// True if `set` came up before in this solve; records it otherwise.
   bool seen_before(const std::vector<Index>& set) {
@@ -77,8 +78,8 @@ class ActiveSetLoop {
   /// Runs the loop from `start_set` (sorted element numbers), or from step 1's set if empty.
   Solution<Scalar> run(const std::vector<Index>& start_set) {
     const Index n_all = influence_.grid().size();
-    solution_.pressure = Vector::Zero(n_all);
-    solution_.in_contact = Solution<Scalar>::Mask::Constant(n_all, false);
+    solution_ = std::move(work_.spare_solution);
+    solution_.clear(n_all);
     if (!choose_start(start_set)) return finish(Status::no_contact, "no element has a negative undeformed distance");
     work_.visited_elements.clear();
     work_.visited_ends.clear();
@@ -108,8 +109,9 @@ class ActiveSetLoop {
     }
     // The last iterate, its negative pressures clipped, so the caller can inspect it.
     store(work_.active, work_.columns.view().data(), approach_);
-    return finish(Status::iteration_limit,
-                  "active set still changing after " + std::to_string(solution_.iterations) + " iterations");
+    const std::string message =
+        "active set still changing after " + std::to_string(solution_.iterations) + " iterations";
+    return finish(Status::iteration_limit, message.c_str());
   }
 
  private:
@@ -211,9 +213,11 @@ class ActiveSetLoop {
     solution_.normal_force = influence_.grid().element_area() * solution_.pressure.sum();
   }
 
-  Solution<Scalar> finish(Status status, std::string message) {
+  /// `message` is copied into the answer's string, which keeps its storage (a recycled
+  /// answer's: no allocation).
+  Solution<Scalar> finish(Status status, const char* message) {
     solution_.status = status;
-    solution_.message = std::move(message);
+    solution_.message = message;
     solution_.residual = residual_;
     return std::move(solution_);
   }

@@ -10,6 +10,7 @@
 #include <limits>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "fastnorm/error.hpp"
@@ -95,8 +96,9 @@ inline std::vector<GapSample> sample_gap(const Track& track, const Wheelset& whe
 /// even at a 10 mm flange radius, far less than candidate_gap: every sample with gap < 0,
 /// and so every contact region, is exactly the full sampling's (docs/wheel-rail.md §4;
 /// tests/wheelrail/geometry.test.cpp compares the two on many poses).
-inline std::vector<GapSample> sample_gap_near_contact(const Track& track, const Wheelset& wheelset, Side side,
-                                                      const WheelsetPose& pose, const SearchOptions& options = {}) {
+/// The samples go into `samples` (resized; its storage is reused from call to call).
+inline void sample_gap_near_contact(const Track& track, const Wheelset& wheelset, Side side, const WheelsetPose& pose,
+                                    const SearchOptions& options, std::vector<GapSample>& samples) {
   constexpr std::size_t coarse_stride = 10;
   constexpr double candidate_gap = 0.05e-3;  // m
   options.validate();
@@ -107,7 +109,7 @@ inline std::vector<GapSample> sample_gap_near_contact(const Track& track, const 
     const double y_w = std::min(profile.y_max, profile.y_min + static_cast<double>(k) * options.step);
     return gap_at(track, wheelset, side, y_w, pose, rotation);
   };
-  std::vector<GapSample> samples(count + 1);
+  samples.assign(count + 1, GapSample{});
   for (std::size_t k = 0; k <= count; k += coarse_stride) samples[k] = sample(k);
   samples[count] = sample(count);
   for (std::size_t first = 0; first < count; first += coarse_stride) {
@@ -115,6 +117,13 @@ inline std::vector<GapSample> sample_gap_near_contact(const Track& track, const 
     if (!(std::min(samples[first].gap, samples[last].gap) < candidate_gap)) continue;
     for (std::size_t k = first + 1; k < last; ++k) samples[k] = sample(k);
   }
+}
+
+/// The same, returned.
+inline std::vector<GapSample> sample_gap_near_contact(const Track& track, const Wheelset& wheelset, Side side,
+                                                      const WheelsetPose& pose, const SearchOptions& options = {}) {
+  std::vector<GapSample> samples;
+  sample_gap_near_contact(track, wheelset, side, pose, options, samples);
   return samples;
 }
 
@@ -156,23 +165,29 @@ inline GapSample smallest_gap(const Track& track, const Wheelset& wheelset, Side
 /// less than `separation_angle` form one patch. The centre and inclination are the
 /// interpenetration-weighted means with CONTACT's weight per slice, ∫(−g(x))² dx over the
 /// overlap of the slice, g(x) = g − x²/(2ρ), i.e. (16/15)·pen²·√(2ρ·pen) (docs/wheel-rail.md §3).
-inline std::vector<ContactRegion> contact_regions(const Track& track, const Wheelset& wheelset, Side side,
-                                                  const WheelsetPose& pose, const SearchOptions& options = {}) {
-  const auto samples = sample_gap_near_contact(track, wheelset, side, pose, options);
-  std::vector<ContactRegion> regions;
+///
+/// Into `regions`, by increasing y_w; `samples` is scratch. Both keep their storage from
+/// call to call (with the regions' slices), so a time loop's search stops allocating.
+inline void contact_regions(const Track& track, const Wheelset& wheelset, Side side, const WheelsetPose& pose,
+                            const SearchOptions& options, std::vector<GapSample>& samples,
+                            std::vector<ContactRegion>& regions) {
+  sample_gap_near_contact(track, wheelset, side, pose, options, samples);
+  std::size_t count = 0;  // regions in use; the others keep their storage until the end
   for (std::size_t k = 0; k < samples.size(); ++k) {
     if (!(samples[k].gap < 0)) continue;
     if (k == 0 || !(samples[k - 1].gap < 0)) {
-      ContactRegion region;
+      if (count == regions.size()) regions.emplace_back();
+      ContactRegion& region = regions[count++];
       region.side = side;
       region.deepest = samples[k];
-      regions.push_back(region);
+      region.slices.clear();
     }
-    auto& region = regions.back();
+    auto& region = regions[count - 1];
     region.slices.push_back(samples[k]);
     if (samples[k].gap < region.deepest.gap) region.deepest = samples[k];
   }
-  for (auto& region : regions) {
+  for (std::size_t r = 0; r < count; ++r) {
+    auto& region = regions[r];
     Eigen::Vector3d weighted = Eigen::Vector3d::Zero();
     double inclination = 0, total = 0;
     for (const auto& slice : region.slices) {
@@ -186,11 +201,13 @@ inline std::vector<ContactRegion> contact_regions(const Track& track, const Whee
     region.centre = weighted / total;
     region.inclination = inclination / total;
   }
-  // Merge neighbours (ordered by y_w, so by rail position).
-  std::vector<ContactRegion> merged;
-  for (auto& region : regions) {
-    if (!merged.empty()) {
-      auto& last = merged.back();
+  // Merge neighbours (ordered by y_w, so by rail position) in place: regions[0, kept) are
+  // the merged ones.
+  std::size_t kept = 0;
+  for (std::size_t r = 0; r < count; ++r) {
+    ContactRegion& region = regions[r];
+    if (kept > 0) {
+      auto& last = regions[kept - 1];
       const auto& a = last.slices.back();
       const auto& b = region.slices.front();
       const double distance = std::hypot(a.wheel.point.y() - b.wheel.point.y(), a.rail_z - b.rail_z);
@@ -205,9 +222,19 @@ inline std::vector<ContactRegion> contact_regions(const Track& track, const Whee
         continue;
       }
     }
-    merged.push_back(std::move(region));
+    if (kept != r) std::swap(regions[kept], region);
+    ++kept;
   }
-  return merged;
+  regions.resize(kept);
+}
+
+/// The same, returned.
+inline std::vector<ContactRegion> contact_regions(const Track& track, const Wheelset& wheelset, Side side,
+                                                  const WheelsetPose& pose, const SearchOptions& options = {}) {
+  std::vector<GapSample> samples;
+  std::vector<ContactRegion> regions;
+  contact_regions(track, wheelset, side, pose, options, samples, regions);
+  return regions;
 }
 
 /// The rigid pose with both wheels just touching their rails (no interpenetration) at

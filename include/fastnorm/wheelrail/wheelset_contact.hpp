@@ -269,7 +269,8 @@ class WheelsetContact {
   void evaluate_wheel(Side side, const WheelsetPose& pose, WheelContact& wheel) {
     auto clock = std::chrono::steady_clock::now();
     wheel.side = side;
-    const auto regions = contact_regions(track_, wheelset_, side, pose, options_.search);
+    std::vector<ContactRegion>& regions = regions_;
+    contact_regions(track_, wheelset_, side, pose, options_.search, samples_, regions);
     const std::size_t w = side == Side::right ? 1 : 0;
     std::vector<State>& previous = states_[w];
     std::vector<State>& next = next_states_[w];  // storage of the call before the last
@@ -425,6 +426,7 @@ class WheelsetContact {
   void solve_patch(const WheelsetPose& pose, State& state, PatchContact& out) {
     const Solver& solver = solvers_[state.solver].solver;
     auto& patch = out.patch;
+    state.workspace.recycle(std::move(out.solution));  // the last call's answer: its storage
     out.solution = solver.solve(patch.undeformed_distance, Loading<double>::approach(), state.workspace);
     const auto& solution = out.solution;
     state.contact_set.clear();
@@ -500,6 +502,8 @@ class WheelsetContact {
   std::array<std::vector<State>, 2> next_states_;  // the same, being filled by a call
   std::vector<std::vector<std::size_t>> predecessors_;  // of each new patch (match)
   std::vector<int> successor_counts_;                  // of each previous patch (match)
+  std::vector<ContactRegion> regions_;                 // of the wheel being evaluated
+  std::vector<GapSample> samples_;                     // of its contact search
   WheelsetContactResult result_;
 };
 
