@@ -368,9 +368,10 @@ class WheelsetContact {
     if (fits) {
       state.box_i = kept->box_i, state.box_j = kept->box_j;
       mx = kept->grid.mx(), my = kept->grid.my();
-    } else {  // a new box, with room to move before the next
-      state.box_i = first_i - box_margin, state.box_j = first_j - box_margin;
-      mx += 2 * box_margin, my += 2 * box_margin;
+    } else {  // a new box, with room to move before the next and a size from a coarse set
+      auto rounded = [](Eigen::Index count) { return (count + 2 * box_margin + box_quantum - 1) / box_quantum * box_quantum; };
+      mx = rounded(needed.mx()), my = rounded(needed.my());
+      state.box_i = first_i - (mx - needed.mx()) / 2, state.box_j = first_j - (my - needed.my()) / 2;
     }
     state.grid = Grid<double>(mx, my, dx_, ds_, (static_cast<double>(state.box_i) - a) * dx_,
                               (static_cast<double>(state.box_j) - b) * ds_);
@@ -484,8 +485,12 @@ class WheelsetContact {
     }
   }
 
-  /// Elements added on every side when a patch needs a new box.
+  /// Elements added at least on every side when a patch needs a new box.
   static constexpr Eigen::Index box_margin = 2;
+  /// A new box's sides are multiples of this many elements, so that a run meets few grid
+  /// sizes (each a solver with its tables and caches): 58 sizes became 12 along the
+  /// trajectory benchmark (docs/performance.md §8).
+  static constexpr Eigen::Index box_quantum = 8;
 
   const Track& track_;
   const Wheelset& wheelset_;
