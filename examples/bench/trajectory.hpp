@@ -6,7 +6,10 @@
 //
 //   trajectory solver=<name> steps=<n> search_us=<t> h_us=<t> solve_us=<t> total_us=<t>
 //     total_p99_us=<t> max_err_vs_norm=<x> max_set_diff=<n> roughness=<x> roughness_norm=<x>
-//     allocations_per_step=<x>
+//     allocations_per_step=<x> iterations_per_patch=<x>
+//
+// A solver name ending in "+warm" (e.g. elliptic+warm) runs a reduced solver with
+// `reduced_warm_start`: each solve starts from the patch's previous contact set.
 //
 // Times are medians per wheel per step (p99 of the total); errors and contact-set
 // differences against NORM on the same h at every 20th step (NORM runs first, on the same
@@ -22,6 +25,8 @@
 #include <cmath>
 #include <cstdio>
 #include <string>
+#include <tuple>
+#include <utility>
 #include <vector>
 
 #include "support/allocation_counter.hpp"
@@ -47,16 +52,27 @@ struct TrajectoryRun {
   std::vector<std::array<double, 2>> wheel_force;       // Σ Fn per wheel, per step
   std::vector<std::vector<fastnorm::Solution<double>>> checked;  // every 20th step: the patches' solutions
   double allocations_per_step = -1;
+  double iterations_per_patch = 0;  // mean active-set or CG iterations of a patch solve
 };
+
+inline constexpr const char* warm_suffix = "+warm";
+
+/// The solver spec of a bench name, and whether it asks for a reduced warm start.
+inline std::pair<fastnorm::SolverSpec<double>, bool> trajectory_solver(const std::string& name) {
+  const std::string suffix = warm_suffix;
+  const bool warm = name.size() > suffix.size() && name.compare(name.size() - suffix.size(), suffix.size(), suffix) == 0;
+  return {fastnorm::SolverSpec<double>::parse(warm ? name.substr(0, name.size() - suffix.size()) : name), warm};
+}
 
 inline constexpr int check_every = 20;
 
 inline TrajectoryRun run_trajectory(const wr::Track& track, const wr::Wheelset& wheelset,
                                     const std::vector<wr::WheelsetPose>& poses, const std::string& solver) {
   wr::WheelsetContactOptions options;
-  options.solver = fastnorm::SolverSpec<double>::parse(solver);
+  std::tie(options.solver, options.reduced_warm_start) = trajectory_solver(solver);
   wr::WheelsetContact<> contact(track, wheelset, options);
   TrajectoryRun run;
+  long iterations = 0, solves = 0;
   long allocations_before = 0;
   for (std::size_t step = 0; step < poses.size(); ++step) {
     if (step == 10) allocations_before = fastnorm_example::allocation_count();
@@ -69,6 +85,7 @@ inline TrajectoryRun run_trajectory(const wr::Track& track, const wr::Wheelset& 
       run.solve.push_back(wheel.times.solve);
       run.total.push_back(wheel.times.search + wheel.times.distance + wheel.times.solve);
       force[w] = wheel.normal_force;
+      for (const auto& patch : wheel.patches) iterations += patch.solution.iterations, ++solves;
     }
     run.wheel_force.push_back(force);
     if (step % check_every == 0) {
@@ -79,6 +96,7 @@ inline TrajectoryRun run_trajectory(const wr::Track& track, const wr::Wheelset& 
       run.checked.push_back(std::move(solutions));
     }
   }
+  run.iterations_per_patch = solves > 0 ? static_cast<double>(iterations) / static_cast<double>(solves) : 0.0;
   if (poses.size() > 10 && allocations_before >= 0) {
     run.allocations_per_step = static_cast<double>(fastnorm_example::allocation_count() - allocations_before) /
                                static_cast<double>(poses.size() - 10);
@@ -128,11 +146,12 @@ inline void bench_trajectory(const std::vector<std::string>& solvers, int steps)
       }
     }
     std::printf("trajectory solver=%s steps=%d search_us=%.1f h_us=%.1f solve_us=%.1f total_us=%.1f total_p99_us=%.1f "
-                "max_err_vs_norm=%.3e max_set_diff=%ld roughness=%.3e roughness_norm=%.3e allocations_per_step=%.2f\n",
-                fastnorm::SolverSpec<double>::parse(name).name().c_str(), steps, 1e6 * quantile(run.search, 0.5),
+                "max_err_vs_norm=%.3e max_set_diff=%ld roughness=%.3e roughness_norm=%.3e allocations_per_step=%.2f "
+                "iterations_per_patch=%.2f\n",
+                (trajectory_solver(name).first.name() + (trajectory_solver(name).second ? warm_suffix : "")).c_str(), steps, 1e6 * quantile(run.search, 0.5),
                 1e6 * quantile(run.distance, 0.5), 1e6 * quantile(run.solve, 0.5), 1e6 * quantile(run.total, 0.5),
                 1e6 * quantile(run.total, 0.99), max_error, max_set_diff, roughness(run), roughness(norm),
-                run.allocations_per_step);
+                run.allocations_per_step, run.iterations_per_patch);
     std::fflush(stdout);
   }
 }

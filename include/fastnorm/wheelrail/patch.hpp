@@ -81,12 +81,14 @@ inline void undeformed_distance(const Track& track, const Wheelset& wheelset, co
   const Eigen::Matrix3d rotation = Wheelset::rotation(pose);
   const Eigen::Vector3d centre = wheelset.centre(pose);
   const Eigen::Vector3d normal_in_wheelset = rotation.transpose() * normal;
-  const Eigen::Vector3d step_in_wheelset = rotation.transpose() * Eigen::Vector3d::UnitX() * grid.dx();
+  const Eigen::Vector3d step_in_wheelset = grid.dx() * rotation.row(0).transpose();  // R^T e_x dx
   h.resize(grid.size());
   for (Eigen::Index j = 0; j < grid.my(); ++j) {
     const Eigen::Vector3d row_point = frame.reference + grid.y(j) * lateral;
     const auto rail = track.distance_to_rail(frame.side, row_point.y(), row_point.z(), normal.y(), normal.z());
-    const Eigen::Vector3d row_start = rotation.transpose() * (row_point + grid.x(0) * Eigen::Vector3d::UnitX() - centre);
+    Eigen::Vector3d offset = row_point - centre;  // of the row's first element, track frame
+    offset.x() += grid.x(0);
+    const Eigen::Vector3d row_start = rotation.transpose() * offset;
     std::array<double, 3> roots{};  // the last roots of this row, newest first
     int known = 0;                  // how many of them are the previous elements'
     for (Eigen::Index i = 0; i < grid.mx(); ++i) {
