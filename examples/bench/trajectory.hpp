@@ -145,10 +145,12 @@ inline void bench_trajectory(const std::vector<std::string>& solvers, int steps)
         max_set_diff = std::max(max_set_diff, static_cast<long>((ours[k].in_contact != reference[k].in_contact).count()));
       }
     }
+    const auto [spec, warm] = trajectory_solver(name);
+    const std::string label = spec.name() + (warm ? warm_suffix : "");
     std::printf("trajectory solver=%s steps=%d search_us=%.1f h_us=%.1f solve_us=%.1f total_us=%.1f total_p99_us=%.1f "
                 "max_err_vs_norm=%.3e max_set_diff=%ld roughness=%.3e roughness_norm=%.3e allocations_per_step=%.2f "
                 "iterations_per_patch=%.2f\n",
-                (trajectory_solver(name).first.name() + (trajectory_solver(name).second ? warm_suffix : "")).c_str(), steps, 1e6 * quantile(run.search, 0.5),
+                label.c_str(), steps, 1e6 * quantile(run.search, 0.5),
                 1e6 * quantile(run.distance, 0.5), 1e6 * quantile(run.solve, 0.5), 1e6 * quantile(run.total, 0.5),
                 1e6 * quantile(run.total, 0.99), max_error, max_set_diff, roughness(run), roughness(norm),
                 run.allocations_per_step, run.iterations_per_patch);

@@ -11,11 +11,11 @@
 #include <fastnorm/hertz.hpp>
 #include <fastnorm/wheelrail.hpp>
 
-#include <cmath>
 #include <cstddef>
 #include <string>
 #include <vector>
 
+#include "bench/trajectory.hpp"
 #include "support/allocation_counter.hpp"
 
 namespace {
@@ -108,14 +108,8 @@ TEST_CASE("The wheelset contact model allocates nothing per step after warm-up",
   namespace wr = fastnorm::wheelrail;
   const wr::Track track;
   const wr::Wheelset wheelset;
-  // A hunting-like motion at 1 kHz (as the trajectory benchmark), geometry included.
-  std::vector<wr::WheelsetPose> poses;
-  for (int step = 0; step < 60; ++step) {
-    const double t = 1e-3 * step;
-    auto pose = wr::rigid_contact_pose(track, wheelset, 4e-3 * std::sin(2 * M_PI * t), 3e-3 * std::cos(2 * M_PI * t));
-    pose.z += 0.1e-3;
-    poses.push_back(pose);
-  }
+  // The first 60 ms of the trajectory benchmark, geometry included.
+  const auto poses = fastnorm_bench::trajectory_poses(track, wheelset, 60);
   wr::WheelsetContactOptions options;
   options.solver = fastnorm::SolverSpec<>::parse("cg");
   options.grid.elements = 20;

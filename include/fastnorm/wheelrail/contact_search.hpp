@@ -73,18 +73,30 @@ inline GapSample gap_at(const Track& track, const Wheelset& wheelset, Side side,
   return sample;
 }
 
+namespace detail {
+
+/// The locus samples over a profile: y_w = y_min + k·step for k = 0 … last_sample (the last
+/// clipped to y_max).
+inline std::size_t last_sample(const ProfileCurve& profile, double step) {
+  return static_cast<std::size_t>(std::ceil((profile.y_max - profile.y_min) / step));
+}
+inline double sample_y(const ProfileCurve& profile, double step, std::size_t k) {
+  return std::min(profile.y_max, profile.y_min + static_cast<double>(k) * step);
+}
+
+}  // namespace detail
+
 /// The gap sampled every `options.step` over the wheel profile.
 inline std::vector<GapSample> sample_gap(const Track& track, const Wheelset& wheelset, Side side,
                                          const WheelsetPose& pose, const SearchOptions& options = {}) {
   options.validate();
   const auto& profile = wheelset.profile();
-  const auto count = static_cast<std::size_t>(std::ceil((profile.y_max - profile.y_min) / options.step));
+  const auto count = detail::last_sample(profile, options.step);
   const Eigen::Matrix3d rotation = Wheelset::rotation(pose);
   std::vector<GapSample> samples;
   samples.reserve(count + 1);
   for (std::size_t k = 0; k <= count; ++k) {
-    const double y_w = std::min(profile.y_max, profile.y_min + static_cast<double>(k) * options.step);
-    samples.push_back(gap_at(track, wheelset, side, y_w, pose, rotation));
+    samples.push_back(gap_at(track, wheelset, side, detail::sample_y(profile, options.step, k), pose, rotation));
   }
   return samples;
 }
@@ -103,11 +115,10 @@ inline void sample_gap_near_contact(const Track& track, const Wheelset& wheelset
   constexpr double candidate_gap = 0.05e-3;  // m
   options.validate();
   const auto& profile = wheelset.profile();
-  const auto count = static_cast<std::size_t>(std::ceil((profile.y_max - profile.y_min) / options.step));
+  const auto count = detail::last_sample(profile, options.step);
   const Eigen::Matrix3d rotation = Wheelset::rotation(pose);
   auto sample = [&](std::size_t k) {
-    const double y_w = std::min(profile.y_max, profile.y_min + static_cast<double>(k) * options.step);
-    return gap_at(track, wheelset, side, y_w, pose, rotation);
+    return gap_at(track, wheelset, side, detail::sample_y(profile, options.step, k), pose, rotation);
   };
   samples.assign(count + 1, GapSample{});
   for (std::size_t k = 0; k <= count; k += coarse_stride) samples[k] = sample(k);

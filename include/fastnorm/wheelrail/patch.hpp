@@ -120,19 +120,11 @@ inline void undeformed_distance(const Track& track, const Wheelset& wheelset, co
         const double guess = known == 3 ? 3 * roots[0] - 3 * roots[1] + roots[2]
                              : known == 2 ? 2 * roots[0] - roots[1]
                                           : roots[0];
-        const auto here = radial_excess(guess);
-        if (!off_profile && here.slope != 0) {
-          const double next = guess - here.value / here.slope;
-          std::optional<double> root;
-          if (std::abs(next - guess) <= one_step_acceptance && next > low && next < high) {
-            root = next;
-          } else {
-            root = detail::newton_root(radial_excess, next, low, high, NormalSearch::tolerance);
-          }
-          if (root && !off_profile) {
-            accept(*root);
-            continue;
-          }
+        const auto root =
+            detail::newton_root(radial_excess, guess, low, high, NormalSearch::tolerance, one_step_acceptance);
+        if (root && !off_profile) {
+          accept(*root);
+          continue;
         }
         off_profile = false;
       }

@@ -74,16 +74,20 @@ double bracketed_root(Function f, double low, double high, double guess, double 
 }
 
 /// Root of f by Newton's method from `x` when that converges quickly: at most 8 steps, each
-/// inside (low, high); empty otherwise (then bracketed_root). The fast path of a root near
-/// a known one (undeformed_distance along a row of elements).
+/// inside (low, high), until a step moves less than tolerance/4 — or, for the first step,
+/// at most `first_step_acceptance` (a guess so good that one step is enough, see
+/// undeformed_distance); empty otherwise (then bracketed_root). The fast path of a root
+/// near a known one (undeformed_distance along a row of elements).
 template <typename Function>
-std::optional<double> newton_root(Function f, double x, double low, double high, double tolerance) {
+std::optional<double> newton_root(Function f, double x, double low, double high, double tolerance,
+                                  double first_step_acceptance = 0) {
   for (int step = 0; step < 8; ++step) {
     const auto here = f(x);
     if (here.slope == 0) return std::nullopt;
     const double next = x - here.value / here.slope;
     if (!(next > low && next < high)) return std::nullopt;
-    if (std::abs(next - x) <= tolerance / 4) return next;
+    const double moved = std::abs(next - x);
+    if (moved <= tolerance / 4 || (step == 0 && moved <= first_step_acceptance)) return next;
     x = next;
   }
   return std::nullopt;
