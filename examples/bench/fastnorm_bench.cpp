@@ -10,7 +10,7 @@
 //   with --sequence, then for each case and solver (--sequence-solvers cg,elliptic,polynomial:4):
 //     sequence=<name> solver=<s> calls=<n> per_call_s=<t> cold_per_call_s=<t> speedup_warm=<x>
 //   fastnorm-bench --growth [--sizes 30,60,120,240,480] [--repeats 3]
-//   fastnorm-bench --trajectory [--steps 2000] [--trajectory-solvers norm,cg,elliptic+warm,...]: trajectory.hpp
+//   fastnorm-bench --trajectory [--steps 2000] [--trajectory-solvers norm,cg,elliptic,elliptic+warm,...]: trajectory.hpp
 //     growth=hertz_<n>x<n> elements=<N> ncontact=<n> norm_s=<t> cg_s=<t> cg_iterations=<k>
 //          elliptic_s=<t> polynomial4_s=<t> max_rss_mb=<m>
 //
@@ -241,7 +241,7 @@ fastnorm_example::CommandLine command_line(Arguments& a) {
   line.option("--sizes", a.sizes, "N,...", "--growth: elements across each grid", at_least(4));
   line.flag("--trajectory", a.trajectory, "time the wheelset contact model along the 1 kHz trajectory instead");
   line.option("--steps", a.steps, "N", "--trajectory: time steps (1 ms each)", at_least(3));
-  line.option("--trajectory-solvers", a.trajectory_solvers, "NAME,...", "--trajectory: the solvers, NORM first anyway; NAME+warm: a reduced solver with reduced_warm_start");
+  line.option("--trajectory-solvers", a.trajectory_solvers, "NAME,...", "--trajectory: the solvers, NORM first anyway; NAME+warm, NAME+cold: a reduced solver started warm or cold whatever its default (both: compared step by step)");
   return line;
 }
 

@@ -8,8 +8,18 @@
 //     total_p99_us=<t> max_err_vs_norm=<x> max_set_diff=<n> roughness=<x> roughness_norm=<x>
 //     allocations_per_step=<x> iterations_per_patch=<x>
 //
-// A solver name ending in "+warm" (e.g. elliptic+warm) runs a reduced solver with
-// `reduced_warm_start`: each solve starts from the patch's previous contact set.
+// A solver runs with the model's defaults (WheelsetContactOptions::starts_warm: NORM, CG and
+// the edge-enriched bases warm, elliptic and polynomial cold); the suffix "+warm" or "+cold"
+// (e.g. elliptic+warm) starts every solve of a reduced solver from the patch's previous
+// contact set, or makes it follow the cold path. When a reduced solver runs both ways, one
+// more line compares them step by step on the checked steps (the same grids and h):
+//
+//   warm_vs_cold solver=<name> checked=<n> max_force_diff=<x> max_err_warm=<x> max_err_cold=<x>
+//     steps_set_further=<n> max_set_further=<n>
+//
+// max_force_diff = the largest |Fn_warm/Fn_cold − 1| of a patch; steps_set_further = the
+// checked patches whose warm contact set differs from NORM's in more elements than the cold
+// one's, max_set_further = by how many at most.
 //
 // Times are medians per wheel per step (p99 of the total); errors and contact-set
 // differences against NORM on the same h at every 20th step (NORM runs first, on the same
@@ -24,6 +34,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <optional>
 #include <string>
 #include <tuple>
 #include <utility>
@@ -55,22 +66,34 @@ struct TrajectoryRun {
   double iterations_per_patch = 0;  // mean active-set or CG iterations of a patch solve
 };
 
-inline constexpr const char* warm_suffix = "+warm";
+/// A bench name: a solver spec, and a start forced by "+warm" or "+cold" (else the default).
+struct TrajectorySolver {
+  fastnorm::SolverSpec<double> spec;
+  std::optional<bool> warm;
 
-/// The solver spec of a bench name, and whether it asks for a reduced warm start.
-inline std::pair<fastnorm::SolverSpec<double>, bool> trajectory_solver(const std::string& name) {
-  const std::string suffix = warm_suffix;
-  const bool warm = name.size() > suffix.size() && name.compare(name.size() - suffix.size(), suffix.size(), suffix) == 0;
-  return {fastnorm::SolverSpec<double>::parse(warm ? name.substr(0, name.size() - suffix.size()) : name), warm};
-}
+  static TrajectorySolver parse(const std::string& name) {
+    for (const bool warm : {true, false}) {
+      const std::string suffix = warm ? "+warm" : "+cold";
+      if (name.size() > suffix.size() && name.compare(name.size() - suffix.size(), suffix.size(), suffix) == 0) {
+        return {fastnorm::SolverSpec<double>::parse(name.substr(0, name.size() - suffix.size())), warm};
+      }
+    }
+    return {fastnorm::SolverSpec<double>::parse(name), std::nullopt};
+  }
+  std::string label() const { return spec.name() + (!warm ? "" : *warm ? "+warm" : "+cold"); }
+  wr::WheelsetContactOptions options() const {
+    wr::WheelsetContactOptions options;
+    options.solver = spec;
+    options.reduced_warm_start = warm;
+    return options;
+  }
+};
 
 inline constexpr int check_every = 20;
 
 inline TrajectoryRun run_trajectory(const wr::Track& track, const wr::Wheelset& wheelset,
                                     const std::vector<wr::WheelsetPose>& poses, const std::string& solver) {
-  wr::WheelsetContactOptions options;
-  std::tie(options.solver, options.reduced_warm_start) = trajectory_solver(solver);
-  wr::WheelsetContact<> contact(track, wheelset, options);
+  wr::WheelsetContact<> contact(track, wheelset, TrajectorySolver::parse(solver).options());
   TrajectoryRun run;
   long iterations = 0, solves = 0;
   long allocations_before = 0;
@@ -123,38 +146,88 @@ inline double roughness(const TrajectoryRun& run) {
   return largest;
 }
 
-/// Runs NORM first (the reference), then every solver of `solvers`, and prints their lines.
+/// Force error and contact-set difference of `run` against `reference` at each checked
+/// patch (NaN and -1 where the patches differ, which cannot happen on the same geometry).
+struct PatchComparison {
+  std::vector<double> error;
+  std::vector<long> set_diff;
+};
+
+inline PatchComparison compare_patches(const TrajectoryRun& run, const TrajectoryRun& reference) {
+  PatchComparison comparison;
+  for (std::size_t c = 0; c < run.checked.size(); ++c) {
+    const auto& ours = run.checked[c];
+    const auto& theirs = reference.checked[c];
+    for (std::size_t k = 0; k < std::max(ours.size(), theirs.size()); ++k) {
+      const bool same = ours.size() == theirs.size();
+      comparison.error.push_back(same ? std::abs(ours[k].normal_force / theirs[k].normal_force - 1) : std::nan(""));
+      comparison.set_diff.push_back(same ? static_cast<long>((ours[k].in_contact != theirs[k].in_contact).count()) : -1);
+    }
+  }
+  return comparison;
+}
+
+/// The largest value, NaN if any is NaN.
+inline double largest(const std::vector<double>& values) {
+  double result = 0;
+  for (double value : values) result = std::isnan(value) || std::isnan(result) ? std::nan("") : std::max(result, value);
+  return result;
+}
+
+inline void print_warm_vs_cold(const std::string& name, const TrajectoryRun& warm, const TrajectoryRun& cold,
+                               const TrajectoryRun& norm) {
+  const PatchComparison to_cold = compare_patches(warm, cold);
+  const PatchComparison warm_to_norm = compare_patches(warm, norm), cold_to_norm = compare_patches(cold, norm);
+  long further = 0, max_further = 0;
+  for (std::size_t k = 0; k < warm_to_norm.set_diff.size(); ++k) {
+    const long excess = warm_to_norm.set_diff[k] - cold_to_norm.set_diff[k];
+    further += excess > 0 ? 1 : 0;
+    max_further = std::max(max_further, excess);
+  }
+  std::printf("warm_vs_cold solver=%s checked=%zu max_force_diff=%.3e max_err_warm=%.3e max_err_cold=%.3e "
+              "steps_set_further=%ld max_set_further=%ld\n",
+              name.c_str(), to_cold.error.size(), largest(to_cold.error), largest(warm_to_norm.error),
+              largest(cold_to_norm.error), further, max_further);
+  std::fflush(stdout);
+}
+
+/// Runs NORM first (the reference), then every solver of `solvers`, and prints their lines;
+/// then the warm-versus-cold comparison of every reduced solver that ran both ways.
 inline void bench_trajectory(const std::vector<std::string>& solvers, int steps) {
   const wr::Track track;
   const wr::Wheelset wheelset;
   const auto poses = trajectory_poses(track, wheelset, steps);
   const TrajectoryRun norm = run_trajectory(track, wheelset, poses, "norm");
+  struct Labelled {
+    TrajectorySolver solver;
+    TrajectoryRun run;
+  };
+  std::vector<Labelled> runs;
   for (const auto& name : solvers) {
-    const TrajectoryRun run = name == "norm" ? norm : run_trajectory(track, wheelset, poses, name);
-    double max_error = 0;
-    long max_set_diff = 0;
-    for (std::size_t c = 0; c < run.checked.size(); ++c) {
-      const auto& ours = run.checked[c];
-      const auto& reference = norm.checked[c];
-      if (ours.size() != reference.size()) {  // patches differ: cannot happen on the same geometry
-        max_error = std::nan("");
-        continue;
-      }
-      for (std::size_t k = 0; k < ours.size(); ++k) {
-        max_error = std::max(max_error, std::abs(ours[k].normal_force / reference[k].normal_force - 1));
-        max_set_diff = std::max(max_set_diff, static_cast<long>((ours[k].in_contact != reference[k].in_contact).count()));
-      }
-    }
-    const auto [spec, warm] = trajectory_solver(name);
-    const std::string label = spec.name() + (warm ? warm_suffix : "");
+    const TrajectorySolver solver = TrajectorySolver::parse(name);
+    const std::string label = solver.label();
+    TrajectoryRun run = label == "norm" ? norm : run_trajectory(track, wheelset, poses, name);
+    const PatchComparison to_norm = compare_patches(run, norm);
+    const long max_set_diff = to_norm.set_diff.empty() ? 0 : *std::max_element(to_norm.set_diff.begin(), to_norm.set_diff.end());
     std::printf("trajectory solver=%s steps=%d search_us=%.1f h_us=%.1f solve_us=%.1f total_us=%.1f total_p99_us=%.1f "
                 "max_err_vs_norm=%.3e max_set_diff=%ld roughness=%.3e roughness_norm=%.3e allocations_per_step=%.2f "
                 "iterations_per_patch=%.2f\n",
                 label.c_str(), steps, 1e6 * quantile(run.search, 0.5),
                 1e6 * quantile(run.distance, 0.5), 1e6 * quantile(run.solve, 0.5), 1e6 * quantile(run.total, 0.5),
-                1e6 * quantile(run.total, 0.99), max_error, max_set_diff, roughness(run), roughness(norm),
+                1e6 * quantile(run.total, 0.99), largest(to_norm.error), max_set_diff, roughness(run), roughness(norm),
                 run.allocations_per_step, run.iterations_per_patch);
     std::fflush(stdout);
+    runs.push_back({solver, std::move(run)});
+  }
+  // Pairs of runs of one reduced solver, one warm and one cold.
+  for (const auto& warm : runs) {
+    if (!warm.solver.spec.is_reduced() || !warm.solver.options().starts_warm()) continue;
+    for (const auto& cold : runs) {
+      if (cold.solver.spec.name() == warm.solver.spec.name() && !cold.solver.options().starts_warm()) {
+        print_warm_vs_cold(warm.solver.spec.name(), warm.run, cold.run, norm);
+        break;
+      }
+    }
   }
 }
 

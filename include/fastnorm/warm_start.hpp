@@ -30,9 +30,10 @@ class WarmStart {
   const std::vector<Index>& contact_set() const { return contact_set_; }
 
   /// Starts the next solve from `contact_set` (sorted, each element once, each < grid.size()
-  /// of the solver that uses it: checked there). Forgets any pressures.
-  void set_contact_set(std::vector<Index> contact_set) {
-    contact_set_ = std::move(contact_set);
+  /// of the solver that uses it: checked there). Forgets any pressures. Copied into the
+  /// storage the start already has (no allocation once it is large enough).
+  void set_contact_set(const std::vector<Index>& contact_set) {
+    contact_set_.assign(contact_set.begin(), contact_set.end());
     has_pressure_ = false;
   }
 

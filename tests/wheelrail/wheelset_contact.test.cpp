@@ -149,6 +149,48 @@ TEST_CASE("Warm NORM starts are exact and reuse the lattice", "[wheelrail][conta
   }
 }
 
+TEST_CASE("Reduced warm starts begin at the patch's last contact set", "[wheelrail][contact]") {
+  const wr::Track track;
+  const wr::Wheelset wheelset;
+  auto pose = wr::rigid_contact_pose(track, wheelset, 3e-3, 0);
+  pose.z += 0.1e-3;
+  SECTION("defaults: warm for the edge-enriched polynomial basis only, NORM and CG warm") {
+    for (const char* name : {"norm", "cg", "polynomial-edge:4:1"}) CHECK(coarse(name).starts_warm());
+    for (const char* name : {"elliptic", "polynomial:4", "elliptic-edge:1"}) CHECK(!coarse(name).starts_warm());
+    auto options = coarse("elliptic");
+    options.reduced_warm_start = true;
+    CHECK(options.starts_warm());
+    options = coarse("polynomial-edge:4:1");
+    options.reduced_warm_start = false;
+    CHECK(!options.starts_warm());
+  }
+  SECTION("the same pose again: the last set is stable at once, in the same box and the same answer") {
+    auto options = coarse("elliptic");
+    options.reduced_warm_start = true;
+    wr::WheelsetContact<> contact(track, wheelset, options);
+    std::array<double, 2> force{};
+    std::array<Eigen::Index, 2> count{};
+    const auto& first = contact.evaluate(pose);
+    for (std::size_t w = 0; w < 2; ++w) {
+      REQUIRE(first.wheels[w].patches.size() == 1);
+      REQUIRE(first.wheels[w].patches[0].solution.status == fastnorm::Status::converged);
+      REQUIRE(first.wheels[w].patches[0].solution.iterations > 1);
+      force[w] = first.wheels[w].patches[0].normal_force;
+      count[w] = first.wheels[w].patches[0].contact_elements;
+    }
+    for (int call = 0; call < 3; ++call) {  // a box kept for several calls keeps its start fresh
+      const auto& again = contact.evaluate(pose);
+      for (std::size_t w = 0; w < 2; ++w) {
+        const auto& patch = again.wheels[w].patches[0];
+        CHECK(patch.solution.status == fastnorm::Status::converged);
+        CHECK(patch.solution.iterations == 1);
+        CHECK(patch.normal_force == Approx(force[w]).epsilon(1e-12));
+        CHECK(patch.contact_elements == count[w]);
+      }
+    }
+  }
+}
+
 namespace {
 
 // CONTACT centres each grid on its contact reference point: the model without the lattice.

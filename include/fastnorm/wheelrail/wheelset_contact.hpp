@@ -47,12 +47,22 @@ struct WheelsetContactOptions {
   /// Start each NORM or CG solve from the patch's previous contact set (shifted onto the
   /// new grid); their answers do not depend on it, only their time.
   bool warm_start = true;
-  /// The same for the reduced solvers, whose answer depends on the path of the active set:
-  /// off by default, since a warm start measured larger contact-set differences from NORM
-  /// than the cold path (docs/performance.md §8); off, they follow the cold path and reuse
-  /// the assemblies of their previous solve where the grid is unchanged.
-  bool reduced_warm_start = false;
+  /// The same for the reduced solvers, whose answer depends on the path of the active set,
+  /// so that a warm answer may differ from the cold one. Unset: warm for the edge-enriched
+  /// polynomial basis, whose warm answers along the benchmark trajectory were its cold ones
+  /// in half the time; cold for the others, whose warm contact sets were further from
+  /// NORM's than their cold ones at some steps (docs/performance.md §8). Cold, a solve
+  /// follows the cold path and reuses the assemblies of the previous solve where the grid
+  /// is unchanged.
+  std::optional<bool> reduced_warm_start;
+
   bool stiffness = true;  ///< compute each patch's dFn/dδ (one extra solve with the last factor)
+
+  /// Whether a solve of `solver` starts from the patch's previous contact set.
+  bool starts_warm() const {
+    if (!solver.is_reduced()) return warm_start;
+    return reduced_warm_start.value_or(solver.kind == SolverSpec<double>::Kind::polynomial_edge);
+  }
 
   /// @throws fastnorm::invalid_argument naming the offending field
   void validate() const {
@@ -398,14 +408,18 @@ class WheelsetContact {
     } else {
       state.workspace = take_workspace(state.solver);
     }
-    const bool warm = options_.solver.is_reduced() ? options_.reduced_warm_start : options_.warm_start;
-    if (!warm || predecessors.empty()) {
+    if (!options_.starts_warm() || predecessors.empty()) {
       state.workspace.start().clear();
       return;
     }
-    // The same box: the workspace's own start (NORM's set, CG's pressures) is in place.
-    if (options_.snap_to_lattice && same_box(state, predecessors, previous)) return;
-    std::vector<Eigen::Index> set;
+    if (options_.snap_to_lattice && same_box(state, predecessors, previous)) {
+      // The same box: NORM's set and CG's pressures are in place in the workspace; a reduced
+      // solver keeps no start of its own, so it gets the patch's last contact set as it is.
+      if (options_.solver.is_reduced()) state.workspace.start().set_contact_set(previous[predecessors.front()].contact_set);
+      return;
+    }
+    std::vector<Eigen::Index>& set = shifted_set_;
+    set.clear();
     const Eigen::Vector3d lateral = state.frame.lateral_axis();
     for (std::size_t p : predecessors) {
       const State& from = previous[p];
@@ -420,7 +434,7 @@ class WheelsetContact {
     }
     std::sort(set.begin(), set.end());
     set.erase(std::unique(set.begin(), set.end()), set.end());
-    state.workspace.start().set_contact_set(std::move(set));
+    state.workspace.start().set_contact_set(set);
   }
 
   /// Solves one patch in approach control and fills its forces and stiffness.
@@ -509,6 +523,7 @@ class WheelsetContact {
   std::vector<int> successor_counts_;                  // of each previous patch (match)
   std::vector<ContactRegion> regions_;                 // of the wheel being evaluated
   std::vector<GapSample> samples_;                     // of its contact search
+  std::vector<Eigen::Index> shifted_set_;              // a predecessor's set on the new grid (start_from)
   WheelsetContactResult result_;
 };
 
