@@ -48,12 +48,11 @@ inline ProfileCurve spline_curve(SplineProfile spline) {
 
 namespace detail {
 
-/// Root of f on [low, high] where f(low), f(high) differ in sign: Newton steps from
-/// `guess`, kept inside the shrinking bracket (bisection when a step leaves it).
+/// Root of f on [low, high] where f(low) = `at_low` and f(high) differ in sign: Newton
+/// steps from `guess`, kept inside the shrinking bracket (bisection when a step leaves it).
 /// `f` returns {value, derivative}. Hand-written: a scalar 1-D root is not Eigen's business.
 template <typename Function>
-double bracketed_root(Function f, double low, double high, double guess, double tolerance) {
-  auto at_low = f(low).value;
+double bracketed_root(Function f, double low, double at_low, double high, double guess, double tolerance) {
   if (at_low == 0) return low;
   double x = (guess > low && guess < high) ? guess : (low + high) / 2;
   for (int step = 0; step < 200 && high - low > tolerance; ++step) {
@@ -71,6 +70,12 @@ double bracketed_root(Function f, double low, double high, double guess, double 
     x = next;
   }
   return x;
+}
+
+/// The same, with f(low) evaluated first.
+template <typename Function>
+double bracketed_root(Function f, double low, double high, double guess, double tolerance) {
+  return bracketed_root(f, low, f(low).value, high, guess, tolerance);
 }
 
 /// Root of f by Newton's method from `x` when that converges quickly: at most 8 steps, each

@@ -66,6 +66,9 @@ class Track {
       (canted_z(middle) + shift_z_ <= layout.gauge_depth ? inside : outside) = middle;
     }
     shift_y_ = layout.gauge / 2 - canted_y(inside);
+    // Where the right rail profile begins and ends across the track (y increases with y_r).
+    first_y_ = canted_y(rail_.y_min) + shift_y_;
+    last_y_ = canted_y(rail_.y_max) + shift_y_;
   }
 
   const TrackLayout& layout() const { return layout_; }
@@ -92,10 +95,10 @@ class Track {
       const double dy_dyr = cos_ + sin_ * p.depth_slope, dz_dyr = -sin_ + cos_ * p.depth_slope;
       return ProfileValue<double>{(p.y - y) * dir_z - (p.z - z) * dir_y, dy_dyr * dir_z - dz_dyr * dir_y};
     };
-    const double low = rail_.y_min, high = rail_.y_max;
-    if ((crossing(low).value < 0) == (crossing(high).value < 0)) return std::nullopt;
+    const double low = rail_.y_min, high = rail_.y_max, at_low = crossing(low).value;
+    if ((at_low < 0) == (crossing(high).value < 0)) return std::nullopt;
     const auto guess = right_profile_coordinate(y);
-    const double y_r = detail::bracketed_root(crossing, low, high, guess ? *guess : (low + high) / 2, 1e-13);
+    const double y_r = detail::bracketed_root(crossing, low, at_low, high, guess ? *guess : (low + high) / 2, 1e-13);
     const auto p = right_rail(y_r);
     return (p.y - y) * dir_y + (p.z - z) * dir_z;
   }
@@ -124,14 +127,15 @@ class Track {
       const auto at = rail_.evaluate(y_r);
       return ProfileValue<double>{cos_ * y_r + sin_ * at.value + shift_y_ - y, cos_ + sin_ * at.slope};
     };
-    if (offset(rail_.y_min).value > 0 || offset(rail_.y_max).value < 0) return std::nullopt;
-    return detail::bracketed_root(offset, rail_.y_min, rail_.y_max, (y - shift_y_) / cos_, 1e-13);
+    if (!(y >= first_y_ && y <= last_y_)) return std::nullopt;
+    return detail::bracketed_root(offset, rail_.y_min, first_y_ - y, rail_.y_max, (y - shift_y_) / cos_, 1e-13);
   }
 
   ProfileCurve rail_;
   TrackLayout layout_;
   double cos_ = 1, sin_ = 0;
   double shift_y_ = 0, shift_z_ = 0;
+  double first_y_ = 0, last_y_ = 0;  // y of the right rail's first and last profile points
 };
 
 }  // namespace fastnorm::wheelrail

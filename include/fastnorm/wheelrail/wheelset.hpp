@@ -122,7 +122,7 @@ class Wheelset {
     const auto rho = radius(side, profile_y);
     const double sine = std::clamp(-rho.slope * std::tan(pose.yaw), -1.0, 1.0);
     const double angle = std::asin(sine);
-    const Vector3 on_wheel(rho.value * sine, axle_coordinate(side, profile_y), rho.value * std::cos(angle));
+    const Vector3 on_wheel(rho.value * sine, axle_coordinate(side, profile_y), rho.value * std::sqrt(1 - sine * sine));
     return {profile_y, rho.value, rho.slope, angle, centre(pose) + rotation * on_wheel};
   }
 
