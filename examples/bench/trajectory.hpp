@@ -9,7 +9,7 @@
 //     allocations_per_step=<x> iterations_per_patch=<x>
 //
 // A solver runs with the model's defaults (WheelsetContactOptions::starts_warm: NORM, CG and
-// the edge-enriched bases warm, elliptic and polynomial cold); the suffix "+warm" or "+cold"
+// the edge-enriched polynomial basis warm, the other reduced bases cold); "+warm" or "+cold"
 // (e.g. elliptic+warm) starts every solve of a reduced solver from the patch's previous
 // contact set, or makes it follow the cold path. When a reduced solver runs both ways, one
 // more line compares them step by step on the checked steps (the same grids and h):
