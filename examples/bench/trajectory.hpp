@@ -36,7 +36,6 @@
 #include <cstdio>
 #include <optional>
 #include <string>
-#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -158,8 +157,8 @@ inline PatchComparison compare_patches(const TrajectoryRun& run, const Trajector
   for (std::size_t c = 0; c < run.checked.size(); ++c) {
     const auto& ours = run.checked[c];
     const auto& theirs = reference.checked[c];
+    const bool same = ours.size() == theirs.size();
     for (std::size_t k = 0; k < std::max(ours.size(), theirs.size()); ++k) {
-      const bool same = ours.size() == theirs.size();
       comparison.error.push_back(same ? std::abs(ours[k].normal_force / theirs[k].normal_force - 1) : std::nan(""));
       comparison.set_diff.push_back(same ? static_cast<long>((ours[k].in_contact != theirs[k].in_contact).count()) : -1);
     }

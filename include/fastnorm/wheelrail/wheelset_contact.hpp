@@ -415,7 +415,8 @@ class WheelsetContact {
     if (options_.snap_to_lattice && same_box(state, predecessors, previous)) {
       // The same box: NORM's set and CG's pressures are in place in the workspace; a reduced
       // solver keeps no start of its own, so it gets the patch's last contact set as it is.
-      if (options_.solver.is_reduced()) state.workspace.start().set_contact_set(previous[predecessors.front()].contact_set);
+      const State& from = previous[predecessors.front()];
+      if (options_.solver.is_reduced()) state.workspace.start().set_contact_set(from.contact_set);
       return;
     }
     std::vector<Eigen::Index>& set = shifted_set_;
