@@ -15,13 +15,12 @@
 // Defaults: y = 0, yaw = 0, load = 200 kN on the wheelset (z and roll found), 60 elements
 // across the largest patch, solver norm. --fz with --wheel: CONTACT's single-wheel mode
 // (vertical force on that wheel, roll fixed by --roll, default 0). --z: contact at the pose
-// (y, z, roll, yaw) as given, no equilibrium (WheelsetContact, docs/wheel-rail.md §9), each
-// line with stiffness=<N/m> (dFn/dδ). --element-size: square elements of that size instead
-// of --elements. Each patch line:
+// (y, z, roll, yaw) as given, no equilibrium (WheelsetContact, docs/wheel-rail.md §9).
+// --element-size: square elements of that size instead of --elements. Each patch line:
 //   wheel=<left|right> patch=<k> fn=<N> ncontact=<n> pmax=<Pa> x_track=<mm> y_track=<mm>
-//   contact_angle=<rad> approach=<m>
+//   contact_angle=<rad> approach=<m> stiffness=<N/m>
 // (contact reference point in the track frame; approach = the patch's rigid
-// interpenetration), plus rel_fn_err_vs_norm=<x> with --compare (full NORM on the same
+// interpenetration; stiffness = dFn/dδ at the final contact set), plus rel_fn_err_vs_norm=<x> with --compare (full NORM on the same
 // patch). A first line starting with '#' states the pose and status. --write-case writes
 // PREFIX_<wheel>_<k>.case (h, approach control, solution); --svg writes PREFIX_<wheel>_<k>.svg
 // (pressure map; contact outlines of NORM and of the chosen solver).
@@ -122,15 +121,8 @@ wr::PatchGridOptions grid_options(const Arguments& a) {
   return grid;
 }
 
-// One patch as printed and written.
-struct PatchLine {
-  const wr::ContactPatch& patch;
-  const fastnorm::Solution<double>& solution;
-  double stiffness;  // NaN: not computed (equilibrium modes)
-};
-
 void report_patches(const Arguments& a, const fastnorm::SolverSpec<double>& solver,
-                    const fastnorm::Material<double>& material, const std::vector<PatchLine>& lines);
+                    const fastnorm::Material<double>& material, const std::vector<const wr::PatchContact*>& patches);
 
 // The equilibrium modes: the wheelset under --load, or one wheel under --fz.
 int run_equilibrium(const Arguments& a, const Setup& setup, const fastnorm::SolverSpec<double>& solver) {
@@ -148,9 +140,9 @@ int run_equilibrium(const Arguments& a, const Setup& setup, const fastnorm::Solv
               result.pose.roll, result.vertical_force, result.lateral_force, result.iterations,
               result.message.empty() ? "" : " message=", result.message.c_str());
   if (!result.ok()) return 1;
-  std::vector<PatchLine> lines;
-  for (const auto& [patch, solution] : result.patches) lines.push_back({patch, solution, std::nan("")});
-  report_patches(a, solver, fastnorm::Material<double>(options.young_modulus, options.poisson_ratio), lines);
+  std::vector<const wr::PatchContact*> patches;
+  for (const auto& patch : result.patches) patches.push_back(&patch);
+  report_patches(a, solver, fastnorm::Material<double>(options.young_modulus, options.poisson_ratio), patches);
   return 0;
 }
 
@@ -169,11 +161,11 @@ int run_fixed_pose(const Arguments& a, const Setup& setup, const fastnorm::Solve
               "lateral_force=%.3f N mode=fixed-pose\n",
               result.ok() ? "converged" : "solver failed", solver.name().c_str(), a.y_mm, a.yaw_deg, a.z_mm, a.roll,
               -result.force.z(), result.force.y());
-  std::vector<PatchLine> lines;
+  std::vector<const wr::PatchContact*> patches;
   for (const auto& wheel : result.wheels) {
-    for (const auto& patch : wheel.patches) lines.push_back({patch.patch, patch.solution, patch.stiffness});
+    for (const auto& patch : wheel.patches) patches.push_back(&patch);
   }
-  report_patches(a, solver, fastnorm::Material<double>(options.young_modulus, options.poisson_ratio), lines);
+  report_patches(a, solver, fastnorm::Material<double>(options.young_modulus, options.poisson_ratio), patches);
   return result.ok() ? 0 : 1;
 }
 
@@ -199,14 +191,16 @@ void write_patch_case(const std::string& path, const std::string& title, const s
 
 // One line per patch, and its case file and drawing when asked for.
 void report_patches(const Arguments& a, const fastnorm::SolverSpec<double>& solver,
-                    const fastnorm::Material<double>& material, const std::vector<PatchLine>& lines) {
+                    const fastnorm::Material<double>& material, const std::vector<const wr::PatchContact*>& patches) {
   const bool solved_by_norm = solver.kind == fastnorm::SolverSpec<double>::Kind::norm;
   int number_on_side[2] = {0, 0};
-  for (const auto& [patch, solution, stiffness] : lines) {
+  for (const wr::PatchContact* contact : patches) {
+    const auto& patch = contact->patch;
+    const auto& solution = contact->solution;
     const int k = ++number_on_side[patch.frame.side == wr::Side::right];
     const char* wheel = wr::to_string(patch.frame.side);
     print_patch(wheel, k, patch, solution);
-    if (!std::isnan(stiffness)) std::printf(" stiffness=%.6e", stiffness);
+    std::printf(" stiffness=%.6e", contact->stiffness);
     // Full NORM on the same patch, for --compare and the outline in --svg.
     fastnorm::Solution<double> norm = solution;
     if (!solved_by_norm && (a.compare || !a.svg_prefix.empty())) {

@@ -45,7 +45,7 @@ struct Measured {
 };
 
 struct PatchRecord {
-  wr::PatchResult norm;  // the equilibrium's patch, solved by NORM
+  wr::PatchContact norm;  // the equilibrium's patch, solved by NORM
   std::vector<Measured> by_solver;
   fastnorm::Solution<double> elliptic;  // for the pressure maps' second outline
 };
@@ -104,8 +104,8 @@ std::vector<std::string> study_solvers() {
   return solvers;
 }
 
-// 1. Equilibria with full NORM, positions shared between the cores. Each starts from the
-//    equilibrium found with the (fast) elliptic basis, which saves NORM solves.
+// 1. Equilibria with full NORM, positions shared between the cores (each search finds its
+//    element sizes with the fast elliptic basis and starts NORM at that pose: §5).
 std::vector<Outcome> find_equilibria(const std::vector<Position>& positions, long elements) {
   const wr::Track track;
   const wr::Wheelset wheelset;
@@ -114,14 +114,10 @@ std::vector<Outcome> find_equilibria(const std::vector<Position>& positions, lon
   auto work = [&] {
     for (std::size_t k = next++; k < positions.size(); k = next++) {
       const auto& p = positions[k];
-      wr::EquilibriumOptions options;
+      wr::EquilibriumOptions options;  // NORM
       options.grid.elements = elements;
-      options.solver = fastnorm::SolverSpec<double>::parse("elliptic");
-      const double y = p.y_mm * 1e-3, yaw = p.yaw_deg * M_PI / 180;
-      const auto first = wr::solve_equilibrium(track, wheelset, y, yaw, p.load, options);
-      options.solver = fastnorm::SolverSpec<double>();  // norm
-      if (first.ok()) options.start = first.pose;
-      outcomes[k] = {p, wr::solve_equilibrium(track, wheelset, y, yaw, p.load, options), {}};
+      outcomes[k] = {p, wr::solve_equilibrium(track, wheelset, p.y_mm * 1e-3, p.yaw_deg * M_PI / 180, p.load, options),
+                     {}};
     }
   };
   std::vector<std::thread> workers;
@@ -198,7 +194,8 @@ void report(const std::vector<Outcome>& outcomes, const std::vector<std::string>
          "approach_m,grid_mx,grid_my,solver,fn_N,rel_fn_err_vs_norm,ncontact,solve_s\n";
   std::printf("fastnorm wheel-rail study: S1002 on UIC60 1:40, %ld elements across the largest patch\n", a.elements);
   std::printf("force error vs full NORM: largest |Fn/Fn_norm - 1| over the patches of each position\n");
-  std::printf("(np: patches; steps: NORM equilibrium steps, each solving every patch once)\n\n");
+  std::printf("(np: patches; steps: contact evaluations of the equilibrium search, elliptic then NORM,\n"
+              " each solving every patch once)\n\n");
   std::printf("%-5s %6s %6s %6s %-9s %3s %5s", "group", "y_mm", "yaw", "kN", "status", "np", "steps");
   for (const auto& name : solvers) std::printf(" %9s", name == "elliptic" ? "elliptic" : ("g=" + name.substr(11)).c_str());
   std::printf("\n");

@@ -29,14 +29,24 @@ TEST_CASE("The wheelset carries its load with no roll moment", "[wheelrail][equi
     const auto result = wr::solve_equilibrium(track, wheelset, y, 0, load, coarse());
     REQUIRE(result.ok());
     double vertical = 0, moment = 0;
-    for (const auto& [patch, solution] : result.patches) {
+    for (const auto& contact : result.patches) {
+      const auto& [frame, grid, h] = contact.patch;
+      const auto& solution = contact.solution;
       REQUIRE(solution.ok());
-      const Eigen::Vector3d arm = patch.frame.reference - wheelset.centre(result.pose);
-      const double c = std::cos(patch.frame.inclination), s = std::sin(patch.frame.inclination);
+      const Eigen::Vector3d arm = frame.reference - wheelset.centre(result.pose);
+      const double c = std::cos(frame.inclination), s = std::sin(frame.inclination);
       vertical += solution.normal_force * c;
       moment -= solution.normal_force * (arm.y() * c + arm.z() * s);
-      // approach 0 on the reported h: the solution is the one of h as it stands
+      // approach 0 on the reported h: the solution is the one of h as it stands, and h is
+      // today's undeformed_distance at the reported pose
       CHECK(solution.approach == 0);
+      CHECK((h - wr::undeformed_distance(track, wheelset, result.pose, frame, grid)).cwiseAbs().maxCoeff() <= 1e-12);
+      // The search's warm-started NORM gives cold NORM's answer on that h.
+      const auto cold = fastnorm::NormSolver<double>(grid, fastnorm::Material<double>(2.1e11, 0.3))
+                            .solve(h, fastnorm::Loading<double>::approach());
+      CHECK(solution.normal_force == Approx(cold.normal_force).epsilon(1e-9));
+      CHECK((solution.in_contact == cold.in_contact).all());
+      CHECK(contact.stiffness > 0);
     }
     // Recomputed from the patches, not taken from the result.
     CHECK(std::abs(vertical - load) <= 1e-6 * load);
@@ -44,8 +54,8 @@ TEST_CASE("The wheelset carries its load with no roll moment", "[wheelrail][equi
     CHECK(result.vertical_force == Approx(vertical).epsilon(1e-12));
     // Both wheels carry load.
     double left = 0, right = 0;
-    for (const auto& [patch, solution] : result.patches) {
-      (patch.frame.side == wr::Side::left ? left : right) += solution.normal_force;
+    for (const auto& contact : result.patches) {
+      (contact.patch.frame.side == wr::Side::left ? left : right) += contact.normal_force;
     }
     CHECK(left > 0.3 * load);
     CHECK(right > 0.3 * load);
@@ -75,7 +85,8 @@ TEST_CASE("Yaw moves the right patch back and the left patch forward", "[wheelra
   for (double yaw_deg : {1.0, -1.0}) {
     const auto result = wr::solve_equilibrium(track, wheelset, 0, yaw_deg * M_PI / 180, 2e5, coarse());
     REQUIRE(result.ok());
-    for (const auto& [patch, solution] : result.patches) {
+    for (const auto& contact : result.patches) {
+      const auto& patch = contact.patch;
       const double expected = (patch.frame.side == wr::Side::right ? -1 : 1) * (yaw_deg > 0 ? 1 : -1);
       INFO(wr::to_string(patch.frame.side) << " wheel at yaw " << yaw_deg << " deg: x = " << patch.frame.reference.x());
       CHECK(patch.frame.reference.x() * expected > 0.012);  // ≈ 12.8 mm (§6.3 rigid: 12.973 mm)
@@ -153,7 +164,8 @@ void compare_with_contact(Eigen::Index elements) {
     INFO(std::filesystem::path(path).filename().string());
     REQUIRE(result.ok());
     REQUIRE(result.patches.size() == 1);
-    const auto& [patch, solution] = result.patches[0];
+    const auto& patch = result.patches[0].patch;
+    const auto& solution = result.patches[0].solution;
     const double force = solution.normal_force / problem.result->normal_force - 1;
     const double y = patch.frame.reference.y() * 1e3 - setup.ycp;
     const double angle = patch.frame.contact_angle() - std::abs(setup.deltcp);

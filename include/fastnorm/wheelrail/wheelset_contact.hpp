@@ -184,6 +184,15 @@ inline double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
+/// Appends the extents of the contact patches of the wheel of `side` at `pose` (none when it
+/// does not touch its rail); element_sizes takes them.
+inline void append_patch_extents(const Track& track, const Wheelset& wheelset, Side side, const WheelsetPose& pose,
+                                 const SearchOptions& search, std::vector<PatchExtent>& extents) {
+  for (const auto& region : contact_regions(track, wheelset, side, pose, search)) {
+    extents.push_back(patch_extent(patch_frame(track, region), region));
+  }
+}
+
 }  // namespace detail
 
 /// The contact model of one wheelset on its track (docs/wheel-rail.md §9).
@@ -241,6 +250,17 @@ class WheelsetContact {
     return result_;
   }
 
+  /// Contact of the wheel of `side` only, at `pose` (CONTACT's single-wheel mode); the other
+  /// wheel's state is kept for a later call, and the wheelset's sums are not updated. The
+  /// result stays valid until the next call.
+  /// @throws fastnorm::invalid_argument for a pose that is not finite or outside PoseLimits
+  const WheelContact& evaluate(const WheelsetPose& pose, Side side) {
+    check_pose(pose, "WheelsetContact::evaluate");
+    WheelContact& wheel = result_.wheels[side == Side::right ? 1 : 0];
+    evaluate_wheel(side, pose, wheel);
+    return wheel;
+  }
+
   /// The next evaluate starts cold: no previous patches, no contact sets (storage kept).
   void reset() {
     for (auto& states : states_) {
@@ -267,9 +287,7 @@ class WheelsetContact {
     }
     std::vector<PatchExtent> extents;
     for (Side side : {Side::left, Side::right}) {
-      for (const auto& region : contact_regions(track_, wheelset_, side, pose, options_.search)) {
-        extents.push_back(patch_extent(patch_frame(track_, region), region));
-      }
+      detail::append_patch_extents(track_, wheelset_, side, pose, options_.search, extents);
     }
     FASTNORM_CHECK(!extents.empty(), "WheelsetContact: no contact at the reference pose to choose element sizes from");
     std::tie(dx_, ds_) = element_sizes(extents, options_.grid);
