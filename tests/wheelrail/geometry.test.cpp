@@ -4,6 +4,7 @@
 #include <catch2/catch.hpp>
 #include <fastnorm/fastnorm.hpp>
 
+#include <array>
 #include <filesystem>
 
 #include "support/wheelrail_cases.hpp"
@@ -193,6 +194,48 @@ TEST_CASE("The contact search samples near contact exactly as the full sampling"
   CHECK(poses == 17 * 3 * 4 * 2);
   CHECK(penetrating > 1000);
   CHECK(different == 0);
+}
+
+TEST_CASE("The contact search continued from step to step samples as the full sampling", "[wheelrail][geometry]") {
+  // Along time histories (a time loop's steps, faster ones and jumps) a GapSampler keeps
+  // the coarse samples that cannot have come near contact: every penetrating sample must
+  // still be the full sampling's, and most coarse samples must be kept.
+  const wr::Track track;
+  const wr::Wheelset wheelset;
+  const auto base = wr::rigid_contact_pose(track, wheelset, 0, 0);
+  int poses = 0, penetrating = 0, different = 0;
+  std::size_t taken = 0, taken_cold = 0;
+  for (double speed : {1.0, 5.0, 40.0}) {  // the benchmark's motion, 5× and 40× as fast per step
+    std::array<wr::GapSampler, 2> samplers;
+    for (int step = 0; step < 400; ++step) {
+      const double t = speed * step * 1e-3;
+      wr::WheelsetPose pose{8e-3 * std::sin(2 * M_PI * t), base.z + 0.2e-3 + 50e-6 * std::sin(2 * M_PI * 8 * t),
+                            2e-3 * std::sin(2 * M_PI * 3 * t), 5e-3 * std::cos(2 * M_PI * t)};
+      if (step == 200) pose.y += 3e-3;  // a jump
+      for (wr::Side side : {wr::Side::left, wr::Side::right}) {
+        auto& sampler = samplers[side == wr::Side::right];
+        const auto& near = sampler.sample(track, wheelset, side, pose, {});
+        const auto full = wr::sample_gap(track, wheelset, side, pose);
+        const auto cold = wr::sample_gap_near_contact(track, wheelset, side, pose);
+        REQUIRE(full.size() == near.size());
+        ++poses;
+        for (std::size_t k = 0; k < full.size(); ++k) {
+          taken += near[k].wheel.radius > 0;
+          taken_cold += cold[k].wheel.radius > 0;
+          if (full[k].gap < 0 || near[k].gap < 0) {
+            ++penetrating;
+            if (near[k].gap != full[k].gap) ++different;
+          }
+        }
+      }
+    }
+  }
+  CHECK(poses == 3 * 400 * 2);
+  CHECK(penetrating > 100000);
+  CHECK(different == 0);
+  CHECK(taken < taken_cold);
+  WARN("continued search: " << static_cast<double>(taken) / poses << " samples per wheel and pose, "
+                            << static_cast<double>(taken_cold) / poses << " from scratch");
 }
 
 namespace {

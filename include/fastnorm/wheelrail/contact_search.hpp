@@ -7,6 +7,7 @@
 #include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <limits>
 #include <optional>
 #include <string>
@@ -101,41 +102,160 @@ inline std::vector<GapSample> sample_gap(const Track& track, const Wheelset& whe
   return samples;
 }
 
-/// What sample_gap gives where the gap may be negative, at a tenth of its cost: every
-/// `coarse_stride`-th sample first, then every sample between two coarse ones of which one
-/// lies below `candidate_gap`; the samples not taken keep gap = +∞. Between coarse samples
-/// Δ = 0.5 mm apart the gap dips below its chord by at most κΔ²/8 (κ its curvature), 3 µm
-/// even at a 10 mm flange radius, far less than candidate_gap: every sample with gap < 0,
-/// and so every contact region, is exactly the full sampling's (docs/wheel-rail.md §4;
-/// tests/wheelrail/geometry.test.cpp compares the two on many poses).
-/// The samples go into `samples` (resized; its storage is reused from call to call).
-inline void sample_gap_near_contact(const Track& track, const Wheelset& wheelset, Side side, const WheelsetPose& pose,
-                                    const SearchOptions& options, std::vector<GapSample>& samples) {
-  constexpr std::size_t coarse_stride = 10;
-  constexpr double candidate_gap = 0.05e-3;  // m
-  options.validate();
-  const auto& profile = wheelset.profile();
-  const auto count = detail::last_sample(profile, options.step);
-  const Eigen::Matrix3d rotation = Wheelset::rotation(pose);
-  auto sample = [&](std::size_t k) {
-    return gap_at(track, wheelset, side, detail::sample_y(profile, options.step, k), pose, rotation);
-  };
-  samples.assign(count + 1, GapSample{});
-  for (std::size_t k = 0; k <= count; k += coarse_stride) samples[k] = sample(k);
-  samples[count] = sample(count);
-  for (std::size_t first = 0; first < count; first += coarse_stride) {
-    const std::size_t last = std::min(first + coarse_stride, count);
-    if (!(std::min(samples[first].gap, samples[last].gap) < candidate_gap)) continue;
-    for (std::size_t k = first + 1; k < last; ++k) samples[k] = sample(k);
+/// What sample_gap gives where the gap may be negative, at a small part of its cost, for
+/// one pose after another (docs/wheel-rail.md §4, item 3). Every `coarse_stride`-th sample
+/// is taken first, then every sample between two coarse ones of which one lies below
+/// `candidate_gap`; the samples not taken keep gap = +∞. Between coarse samples Δ = 0.5 mm
+/// apart the gap dips below its chord by at most κΔ²/8 (κ its curvature), 3 µm even at a
+/// 10 mm flange radius, far less than candidate_gap: every sample with gap < 0, and so every
+/// contact region, is exactly the full sampling's (tests/wheelrail/geometry.test.cpp
+/// compares the two on many poses).
+///
+/// From call to call (a time loop) a coarse sample is taken again only when the pose change
+/// since it was taken could have brought its gap below candidate_gap: its locus point moves
+/// by at most δ = |Δy| + |Δz| + (|Δroll| + |Δyaw|)·|q| + ρ·|Δθ| (q the point in wheelset
+/// axes, θ its wheel angle), so its gap by at most (1 + S)·δ while δ ≤ `drift_limit`, S the
+/// largest rail slope within drift_limit of its rail point; a point more than drift_limit
+/// beyond the rail stays beyond it. A change of side, step, track or wheelset, or a pose
+/// change beyond drift_limit, takes every coarse sample again.
+class GapSampler {
+ public:
+  /// The samples of `side` at `pose` (all 1 + ⌈(y_max − y_min)/step⌉ of them; storage
+  /// reused from call to call).
+  const std::vector<GapSample>& sample(const Track& track, const Wheelset& wheelset, Side side,
+                                       const WheelsetPose& pose, const SearchOptions& options) {
+    options.validate();
+    const auto& profile = wheelset.profile();
+    const auto count = detail::last_sample(profile, options.step);
+    const Eigen::Matrix3d rotation = Wheelset::rotation(pose);
+    auto sample_at = [&](std::size_t k) {
+      return gap_at(track, wheelset, side, detail::sample_y(profile, options.step, k), pose, rotation);
+    };
+    const bool continued = last_pose_ && track_ == &track && wheelset_ == &wheelset && side_ == side &&
+                           step_ == options.step && samples_.size() == count + 1;
+    if (!continued) start(track, wheelset, side, options.step, count);
+    const WheelsetPose last = continued ? *last_pose_ : pose;
+    last_pose_ = pose;
+    // δ of §4 item 3 for a coarse sample c: the part common to every sample, then its own.
+    const double shift = std::abs(pose.y - last.y) + std::abs(pose.z - last.z);
+    const double turn = std::abs(pose.roll - last.roll) + std::abs(pose.yaw - last.yaw);
+    const double tan_last = std::tan(last.yaw), tan_now = std::tan(pose.yaw);
+    const double tan_largest = std::max(std::abs(tan_last), std::abs(tan_now));
+    auto drift_of = [&](const Coarse& c) {
+      const double sine = std::abs(c.radius_slope) * tan_largest;  // |sin θ| at either pose
+      if (!(sine < 0.9)) return std::numeric_limits<double>::infinity();
+      const double angle_change = std::abs(c.radius_slope) * std::abs(tan_now - tan_last) / std::sqrt(1 - sine * sine);
+      return shift + turn * c.reach + c.radius * angle_change;
+    };
+    samples_.assign(count + 1, GapSample{});
+    for (std::size_t c = 0; c < coarse_.size(); ++c) {
+      Coarse& coarse = coarse_[c];
+      const std::size_t k = std::min(c * coarse_stride, count);
+      coarse.drift += continued ? drift_of(coarse) : std::numeric_limits<double>::infinity();
+      const bool still_far = coarse.drift <= drift_limit &&
+                             (std::isfinite(coarse.gap)
+                                  ? coarse.gap - (1 + coarse.slope_bound) * coarse.drift >= candidate_gap
+                                  : coarse.beyond_rail > drift_limit);
+      if (still_far) continue;  // its gap is still ≥ candidate_gap (or it is still off the rail)
+      samples_[k] = sample_at(k);
+      remember(track, side, samples_[k], coarse);
+    }
+    for (std::size_t first = 0; first < count; first += coarse_stride) {
+      const std::size_t last_k = std::min(first + coarse_stride, count);
+      if (!(std::min(samples_[first].gap, samples_[last_k].gap) < candidate_gap)) continue;
+      for (std::size_t k = first + 1; k < last_k; ++k) samples_[k] = sample_at(k);
+    }
+    return samples_;
   }
-}
 
-/// The same, returned.
+  /// The next call takes every coarse sample.
+  void reset() { last_pose_.reset(); }
+
+  /// Every coarse_stride-th sample is taken first.
+  static constexpr std::size_t coarse_stride = 10;
+  /// Samples between coarse ones are taken where one of those lies below this (m).
+  static constexpr double candidate_gap = 0.05e-3;
+  /// The largest drift δ (m) of a locus point over which a coarse sample is kept.
+  static constexpr double drift_limit = 0.5e-3;
+
+ private:
+  /// A coarse sample as last taken, with what bounds its change.
+  struct Coarse {
+    double gap = 0;            ///< when taken (m; +∞ off the rail)
+    double drift = 0;          ///< bound on its locus point's motion since (m)
+    double slope_bound = 0;    ///< largest |rail slope| within drift_limit of its rail point
+    double beyond_rail = 0;    ///< off the rail: how far beyond the rail's span (m)
+    double radius = 0;         ///< ρ(y_w)
+    double radius_slope = 0;   ///< dρ/dy_ws
+    double reach = 0;          ///< |q|, the point's distance from the wheelset centre
+  };
+
+  void start(const Track& track, const Wheelset& wheelset, Side side, double step, std::size_t count) {
+    track_ = &track, wheelset_ = &wheelset, side_ = side, step_ = step;
+    coarse_.assign(count / coarse_stride + 1 + (count % coarse_stride != 0), Coarse{});
+    if (slope_track_ != &track) {
+      slope_track_ = &track;
+      build_slope_bins(track);
+    }
+  }
+
+  void remember(const Track& track, Side side, const GapSample& sample, Coarse& coarse) const {
+    coarse.gap = sample.gap;
+    coarse.drift = 0;
+    coarse.radius = sample.wheel.radius;
+    coarse.radius_slope = sample.wheel.radius_slope;
+    coarse.reach = std::hypot(sample.wheel.radius, wheelset_->axle_coordinate(side, sample.wheel.profile_y));
+    const double y = side_sign(side) * sample.wheel.point.y();  // on the right rail
+    const auto [first_y, last_y] = track.right_rail_span();
+    coarse.beyond_rail = std::max(first_y - y, y - last_y);
+    coarse.slope_bound = std::isfinite(sample.gap) ? slope_near(y) : 0;
+  }
+
+  /// The largest |slope| of the right rail within drift_limit of y: bins of width
+  /// drift_limit, each with the largest |slope| of 41 points across it, raised by a quarter
+  /// for what lies between them (the rail is a smooth spline), then the bin and its neighbours.
+  void build_slope_bins(const Track& track) {
+    const auto [first_y, last_y] = track.right_rail_span();
+    const auto bins = static_cast<std::size_t>(std::ceil((last_y - first_y) / drift_limit));
+    slope_bins_.assign(bins, 0);
+    for (std::size_t b = 0; b < bins; ++b) {
+      for (int k = 0; k <= 40; ++k) {
+        const double y = std::min(last_y, first_y + (static_cast<double>(b) + k / 40.0) * drift_limit);
+        if (const auto rail = track.rail_height(Side::right, y)) {
+          slope_bins_[b] = std::max(slope_bins_[b], 1.25 * std::abs(rail->slope));
+        }
+      }
+    }
+  }
+
+  double slope_near(double y) const {
+    const double first_y = track_->right_rail_span().first;
+    const auto bin = static_cast<std::ptrdiff_t>(std::floor((y - first_y) / drift_limit));
+    double bound = 0;
+    for (std::ptrdiff_t b = bin - 1; b <= bin + 1; ++b) {
+      if (b >= 0 && b < static_cast<std::ptrdiff_t>(slope_bins_.size())) {
+        bound = std::max(bound, slope_bins_[static_cast<std::size_t>(b)]);
+      }
+    }
+    return bound;
+  }
+
+  const Track* track_ = nullptr;
+  const Wheelset* wheelset_ = nullptr;
+  Side side_ = Side::right;
+  double step_ = 0;
+  std::optional<WheelsetPose> last_pose_;
+  std::vector<GapSample> samples_;
+  std::vector<Coarse> coarse_;
+  const Track* slope_track_ = nullptr;
+  std::vector<double> slope_bins_;  // largest |slope| per drift_limit of the right rail
+};
+
+/// The samples of GapSampler for one pose.
 inline std::vector<GapSample> sample_gap_near_contact(const Track& track, const Wheelset& wheelset, Side side,
                                                       const WheelsetPose& pose, const SearchOptions& options = {}) {
-  std::vector<GapSample> samples;
-  sample_gap_near_contact(track, wheelset, side, pose, options, samples);
-  return samples;
+  GapSampler sampler;
+  return sampler.sample(track, wheelset, side, pose, options);
 }
 
 /// Local minima of the gap (tread, flange root, flange …), each refined to 1e-9 m in y_w
@@ -177,12 +297,12 @@ inline GapSample smallest_gap(const Track& track, const Wheelset& wheelset, Side
 /// interpenetration-weighted means with CONTACT's weight per slice, ∫(−g(x))² dx over the
 /// overlap of the slice, g(x) = g − x²/(2ρ), i.e. (16/15)·pen²·√(2ρ·pen) (docs/wheel-rail.md §3).
 ///
-/// Into `regions`, by increasing y_w; `samples` is scratch. Both keep their storage from
-/// call to call (with the regions' slices), so a time loop's search stops allocating.
+/// Into `regions`, by increasing y_w, from the samples of `sampler` (which continues from
+/// its previous call). Both keep their storage from call to call (with the regions'
+/// slices), so a time loop's search stops allocating.
 inline void contact_regions(const Track& track, const Wheelset& wheelset, Side side, const WheelsetPose& pose,
-                            const SearchOptions& options, std::vector<GapSample>& samples,
-                            std::vector<ContactRegion>& regions) {
-  sample_gap_near_contact(track, wheelset, side, pose, options, samples);
+                            const SearchOptions& options, GapSampler& sampler, std::vector<ContactRegion>& regions) {
+  const std::vector<GapSample>& samples = sampler.sample(track, wheelset, side, pose, options);
   std::size_t count = 0;  // regions in use; the others keep their storage until the end
   for (std::size_t k = 0; k < samples.size(); ++k) {
     if (!(samples[k].gap < 0)) continue;
@@ -242,9 +362,9 @@ inline void contact_regions(const Track& track, const Wheelset& wheelset, Side s
 /// The same, returned.
 inline std::vector<ContactRegion> contact_regions(const Track& track, const Wheelset& wheelset, Side side,
                                                   const WheelsetPose& pose, const SearchOptions& options = {}) {
-  std::vector<GapSample> samples;
+  GapSampler sampler;
   std::vector<ContactRegion> regions;
-  contact_regions(track, wheelset, side, pose, options, samples, regions);
+  contact_regions(track, wheelset, side, pose, options, sampler, regions);
   return regions;
 }
 

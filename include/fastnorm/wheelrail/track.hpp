@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <optional>
+#include <utility>
 
 #include "fastnorm/error.hpp"
 #include "fastnorm/wheelrail/profile_curve.hpp"
@@ -72,6 +73,10 @@ class Track {
   }
 
   const TrackLayout& layout() const { return layout_; }
+
+  /// Where the right rail's profile begins and ends across the track (m; the left rail's
+  /// span is its mirror image).
+  std::pair<double, double> right_rail_span() const { return {first_y_, last_y_}; }
 
   /// Height Z (m, down) of the rail on `side` at lateral track position y (m), and dZ/dy;
   /// empty where y is beyond the rail profile.

@@ -263,6 +263,7 @@ class WheelsetContact {
 
   /// The next evaluate starts cold: no previous patches, no contact sets (storage kept).
   void reset() {
+    for (auto& sampler : samplers_) sampler.reset();
     for (auto& states : states_) {
       keep_spare_workspaces(states);
       states.clear();
@@ -298,8 +299,8 @@ class WheelsetContact {
     auto clock = std::chrono::steady_clock::now();
     wheel.side = side;
     std::vector<ContactRegion>& regions = regions_;
-    contact_regions(track_, wheelset_, side, pose, options_.search, samples_, regions);
     const std::size_t w = side == Side::right ? 1 : 0;
+    contact_regions(track_, wheelset_, side, pose, options_.search, samplers_[w], regions);
     std::vector<State>& previous = states_[w];
     std::vector<State>& next = next_states_[w];  // storage of the call before the last
     next.resize(regions.size());
@@ -541,7 +542,7 @@ class WheelsetContact {
   std::vector<std::vector<std::size_t>> predecessors_;  // of each new patch (match)
   std::vector<int> successor_counts_;                  // of each previous patch (match)
   std::vector<ContactRegion> regions_;                 // of the wheel being evaluated
-  std::vector<GapSample> samples_;                     // of its contact search
+  std::array<GapSampler, 2> samplers_;                 // per wheel: the contact search, continued
   std::vector<Eigen::Index> shifted_set_;              // a predecessor's set on the new grid (start_from)
   WheelsetContactResult result_;
 };
