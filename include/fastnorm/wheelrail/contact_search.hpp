@@ -128,11 +128,11 @@ class GapSampler {
     const auto& profile = wheelset.profile();
     const auto count = detail::last_sample(profile, options.step);
     const Eigen::Matrix3d rotation = Wheelset::rotation(pose);
-    auto sample_at = [&](std::size_t k) {
-      return gap_at(track, wheelset, side, detail::sample_y(profile, options.step, k), pose, rotation);
+    auto take = [&](std::size_t k) {
+      samples_[k] = gap_at(track, wheelset, side, detail::sample_y(profile, options.step, k), pose, rotation);
     };
-    const bool continued = last_pose_ && track_ == &track && wheelset_ == &wheelset && side_ == side &&
-                           step_ == options.step && samples_.size() == count + 1;
+    const bool continued =
+        last_pose_ && track_ == &track && wheelset_ == &wheelset && side_ == side && step_ == options.step;
     if (!continued) start(track, wheelset, side, options.step, count);
     const WheelsetPose last = continued ? *last_pose_ : pose;
     last_pose_ = pose;
@@ -157,13 +157,13 @@ class GapSampler {
                                   ? coarse.gap - (1 + coarse.slope_bound) * coarse.drift >= candidate_gap
                                   : coarse.beyond_rail > drift_limit);
       if (still_far) continue;  // its gap is still ≥ candidate_gap (or it is still off the rail)
-      samples_[k] = sample_at(k);
-      remember(track, side, samples_[k], coarse);
+      take(k);
+      remember(samples_[k], coarse);
     }
     for (std::size_t first = 0; first < count; first += coarse_stride) {
       const std::size_t last_k = std::min(first + coarse_stride, count);
       if (!(std::min(samples_[first].gap, samples_[last_k].gap) < candidate_gap)) continue;
-      for (std::size_t k = first + 1; k < last_k; ++k) samples_[k] = sample_at(k);
+      for (std::size_t k = first + 1; k < last_k; ++k) take(k);
     }
     return samples_;
   }
@@ -190,23 +190,21 @@ class GapSampler {
     double reach = 0;          ///< |q|, the point's distance from the wheelset centre
   };
 
+  /// A cold start: every coarse sample to be taken, the slope table of a new track.
   void start(const Track& track, const Wheelset& wheelset, Side side, double step, std::size_t count) {
+    if (track_ != &track) build_slope_bins(track);
     track_ = &track, wheelset_ = &wheelset, side_ = side, step_ = step;
     coarse_.assign(count / coarse_stride + 1 + (count % coarse_stride != 0), Coarse{});
-    if (slope_track_ != &track) {
-      slope_track_ = &track;
-      build_slope_bins(track);
-    }
   }
 
-  void remember(const Track& track, Side side, const GapSample& sample, Coarse& coarse) const {
+  void remember(const GapSample& sample, Coarse& coarse) const {
     coarse.gap = sample.gap;
     coarse.drift = 0;
     coarse.radius = sample.wheel.radius;
     coarse.radius_slope = sample.wheel.radius_slope;
-    coarse.reach = std::hypot(sample.wheel.radius, wheelset_->axle_coordinate(side, sample.wheel.profile_y));
-    const double y = side_sign(side) * sample.wheel.point.y();  // on the right rail
-    const auto [first_y, last_y] = track.right_rail_span();
+    coarse.reach = std::hypot(sample.wheel.radius, wheelset_->axle_coordinate(side_, sample.wheel.profile_y));
+    const double y = side_sign(side_) * sample.wheel.point.y();  // on the right rail
+    const auto [first_y, last_y] = track_->right_rail_span();
     coarse.beyond_rail = std::max(first_y - y, y - last_y);
     coarse.slope_bound = std::isfinite(sample.gap) ? slope_near(y) : 0;
   }
@@ -247,7 +245,6 @@ class GapSampler {
   std::optional<WheelsetPose> last_pose_;
   std::vector<GapSample> samples_;
   std::vector<Coarse> coarse_;
-  const Track* slope_track_ = nullptr;
   std::vector<double> slope_bins_;  // largest |slope| per drift_limit of the right rail
 };
 

@@ -7,7 +7,6 @@
 #include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <optional>
 #include <string>
 #include <tuple>
@@ -120,12 +119,12 @@ class EquilibriumSearch {
     const std::pair<const SolverSpec<double>&, double> stages[] = {
         {sizing_solver, std::max(sizing_tolerance, options_.force_tolerance)},
         {options_.solver, options_.force_tolerance}};
+    std::optional<WheelsetContact<Solver>> model;
     for (const auto& [solver, tolerance] : stages) {
-      const bool last = &solver == &options_.solver;
       const auto sizes = element_sizes_at(pose);
       if (!sizes) return finish(EquilibriumStatus::lost_contact, pose);
-      WheelsetContact<Solver> model(track_, wheelset_, contact_options(*sizes, solver));
-      switch (newton(model, pose, tolerance)) {
+      model.emplace(track_, wheelset_, contact_options(*sizes, solver));
+      switch (newton(*model, pose, tolerance)) {
         case Step::balanced: break;
         case Step::lost_contact: return finish(EquilibriumStatus::lost_contact, pose);
         case Step::solver_failed: return finish(EquilibriumStatus::solver_failed, pose);
@@ -133,8 +132,8 @@ class EquilibriumSearch {
           result_.message = "no equilibrium within " + std::to_string(options_.max_iterations) + " steps";
           return finish(EquilibriumStatus::not_converged, pose);
       }
-      if (last) store();  // while the model holds the patches
     }
+    store();  // the last stage's patches, which the model holds
     return finish(EquilibriumStatus::converged, pose);
   }
 
@@ -282,7 +281,7 @@ class EquilibriumSearch {
   // stiffnesses dFn/dδ, cos δ and lever arms L, and the residuals (vertical, roll).
   std::vector<const PatchContact*> patches_;
   Eigen::VectorXd force_, stiffness_, cosine_, lever_;
-  Eigen::Vector2d residual_ = Eigen::Vector2d::Constant(std::numeric_limits<double>::infinity());
+  Eigen::Vector2d residual_ = Eigen::Vector2d::Zero();
 };
 
 inline void check_load(double load, const char* load_name) {
