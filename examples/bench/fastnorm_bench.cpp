@@ -5,14 +5,14 @@
 //     case=<name> ncontact=<n> norm_s=<t> cg_s=<t> elliptic_s=<t> polynomial4_s=<t>
 //          err_elliptic=<x> err_polynomial4=<x> speedup_elliptic_vs_cg=<x>
 //          speedup_polynomial4_vs_cg=<x> err_cg=<x> cg_as_contact_s=<t> contact_s=<t>
-//          speedup_cg_vs_contact=<x>, then for each extra solver of --solvers (e.g. polynomial-edge:4:1):
+//          speedup_cg_vs_contact=<x> cg_iterations_as_contact=<k> contact_iterations=<k>, then for each extra solver of --solvers (e.g. polynomial-edge:4:1):
 //          <label>_s=<t> err_<label>=<x> speedup_<label>_vs_cg=<x> speedup_<label>_vs_norm=<x>
 //   with --sequence, then for each case and solver (--sequence-solvers cg,elliptic,polynomial:4):
 //     sequence=<name> solver=<s> calls=<n> per_call_s=<t> cold_per_call_s=<t> speedup_warm=<x>
-//   fastnorm-bench --growth [--sizes 30,60,120,240,480] [--repeats 3]
+//   fastnorm-bench --growth [--sizes 30,60,120,240,480,960] [--repeats 3]
 //   fastnorm-bench --trajectory [--steps 2000] [--trajectory-solvers norm,cg,elliptic,elliptic+warm,...]: trajectory.hpp
 //     growth=hertz_<n>x<n> elements=<N> ncontact=<n> norm_s=<t> cg_s=<t> cg_iterations=<k>
-//          elliptic_s=<t> polynomial4_s=<t> max_rss_mb=<m>
+//          cg_mb=<m> elliptic_s=<t> polynomial4_s=<t> max_rss_mb=<m>
 //
 // Every case is solved in approach control on its h minus its stored approach (the loaded
 // surfaces, docs/validation.md §2), so that err = |Fn/Fn_norm − 1| measures the reduced
@@ -138,13 +138,16 @@ void bench_case(const Problem& problem, int repeats, Eigen::Index norm_limit, co
     // CG in the control CONTACT used (force), beside CONTACT's time.
     const fastnorm::CgSolver<> cg(problem.grid, problem.material);
     std::vector<double> seconds;
+    int iterations = 0;
     for (int r = 0; r < repeats; ++r) {
       const auto start = Clock::now();
-      cg.solve(problem.stored->undeformed_distance, problem.stored->loading);
+      iterations = cg.solve(problem.stored->undeformed_distance, problem.stored->loading).iterations;
       seconds.push_back(seconds_since(start));
     }
     std::cout << " cg_as_contact_s=" << median(seconds) << " contact_s=" << *problem.contact_seconds
-              << " speedup_cg_vs_contact=" << *problem.contact_seconds / median(seconds);
+              << " speedup_cg_vs_contact=" << *problem.contact_seconds / median(seconds)
+              << " cg_iterations_as_contact=" << iterations
+              << " contact_iterations=" << problem.stored->result->iterations;
   }
   for (std::size_t s = 0; s < names.size(); ++s) {
     if (t.solutions[s] && t.solutions[s]->status != fastnorm::Status::converged) {
@@ -191,6 +194,21 @@ double max_rss_mb() {
   return static_cast<double>(usage.ru_maxrss) / 1024.0;  // kB on Linux
 }
 
+// CG's own memory (MB): the most heap its solver, workspace and answer hold at once during
+// a construction and a solve, over what was held before (-1 in a build without the
+// allocation wrap).
+double cg_megabytes(const Problem& problem) {
+  const long before = fastnorm_example::held_bytes();
+  if (before < 0) return -1;
+  fastnorm_example::reset_peak_bytes();
+  {
+    const fastnorm::CgSolver<> cg(problem.grid, problem.material);
+    fastnorm::CgWorkspace<> workspace;
+    cg.solve(problem.h, fastnorm::Loading<>::approach(), workspace);
+  }
+  return static_cast<double>(fastnorm_example::peak_bytes() - before) / 1e6;
+}
+
 // Grids of n × n on the Hertz sphere of the peer cases (R = 0.3 m, 50 kN, ±1.2 a), smallest
 // first, so that max_rss_mb, which only grows, is set by the grid of its line.
 void bench_growth(const std::vector<int>& sizes, int repeats, Eigen::Index norm_limit) {
@@ -209,13 +227,13 @@ void bench_growth(const std::vector<int>& sizes, int repeats, Eigen::Index norm_
     std::cout << "growth=hertz_" << size << 'x' << size << " elements=" << grid.size()
               << " ncontact=" << t.solutions[1]->contact_count() << " norm_s=" << shown(t.seconds[0])
               << " cg_s=" << shown(t.seconds[1]) << " cg_iterations=" << t.solutions[1]->iterations
-              << " elliptic_s=" << shown(t.seconds[2]) << " polynomial4_s=" << shown(t.seconds[3])
-              << " max_rss_mb=" << max_rss_mb() << std::endl;
+              << " cg_mb=" << cg_megabytes(problem) << " elliptic_s=" << shown(t.seconds[2])
+              << " polynomial4_s=" << shown(t.seconds[3]) << " max_rss_mb=" << max_rss_mb() << std::endl;
   }
 }
 
 struct Arguments {
-  std::vector<int> sizes{30, 60, 120, 240, 480};
+  std::vector<int> sizes{30, 60, 120, 240, 480, 960};
   std::vector<std::string> cases;
   int repeats = 5, calls = 50;
   long norm_limit = 6000;

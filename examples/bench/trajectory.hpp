@@ -10,9 +10,9 @@
 //
 // A solver runs with the model's defaults (WheelsetContactOptions::starts_warm: NORM, CG and
 // the edge-enriched polynomial basis warm, the other reduced bases cold); "+warm" or "+cold"
-// (e.g. elliptic+warm) starts every solve of a reduced solver from the patch's previous
-// contact set, or makes it follow the cold path. When a reduced solver runs both ways, one
-// more line compares them step by step on the checked steps (the same grids and h):
+// (e.g. elliptic+warm, cg+cold) starts every solve from the patch's previous contact set (CG:
+// pressures), or makes it start cold. When a reduced solver runs both ways, one more line
+// compares them step by step on the checked steps (the same grids and h):
 //
 //   warm_vs_cold solver=<name> checked=<n> max_force_diff=<x> max_err_warm=<x> max_err_cold=<x>
 //     steps_set_further=<n> max_set_further=<n>
@@ -84,6 +84,7 @@ struct TrajectorySolver {
     wr::WheelsetContactOptions options;
     options.solver = spec;
     options.reduced_warm_start = warm;
+    if (warm) options.warm_start = *warm;  // NORM and CG
     return options;
   }
 };

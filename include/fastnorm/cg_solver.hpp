@@ -1,9 +1,11 @@
 #pragma once
 /// @file cg_solver.hpp
-/// The matrix-free full solver: Polonsky and Keer's bound-constrained conjugate gradients
-/// for the Signorini problem (Wear 231, 1999) with C p by FFT (fft_convolution.hpp).
-/// Memory and time per iteration grow as N and N log N, where dense NORM needs N² memory
-/// and N³ time (docs/performance.md §2).
+/// The matrix-free full solver: bound-constrained conjugate gradients for the Signorini
+/// problem (Polonsky and Keer, Wear 231, 1999) preconditioned by an FFT approximate inverse
+/// of C, as Vollebregt's BCCG (J. Comput. Phys. 257, 2014), with C p by FFT
+/// (fft_convolution.hpp). Memory and time per iteration grow as N and N log N, where dense
+/// NORM needs N² memory and N³ time; the iterations hardly grow with N (docs/performance.md
+/// §2, §9).
 
 #include <Eigen/Core>
 #include <algorithm>
@@ -30,8 +32,9 @@ namespace fastnorm {
 template <typename Scalar>
 class CgSolver;
 
-/// What a CgSolver keeps between solves: the starting pressures, its FFT plans and buffers,
-/// and the iteration's vectors, all allocated on the first solve. One per thread.
+/// What a CgSolver keeps between solves: the starting pressures, its FFT plans and buffers
+/// (of C and of the preconditioner), and the iteration's vectors, all allocated on the
+/// first solve. One per thread.
 template <typename Scalar = double>
 class CgWorkspace {
  public:
@@ -49,19 +52,22 @@ class CgWorkspace {
   friend class CgSolver<Scalar>;
   using Vector = Eigen::Matrix<Scalar, Eigen::Dynamic, 1>;
   WarmStart<Scalar> start_;
-  std::optional<FftConvolution<Scalar>> convolution_;  // a copy of the solver's
+  std::optional<FftConvolution<Scalar>> convolution_;     // copies of the solver's
+  std::optional<FftConvolution<Scalar>> preconditioner_;  //
   Vector pressure_, displacement_, gap_, direction_, product_;
+  Vector residual_, previous_residual_, preconditioned_;  // w, the last w, z = K w
   std::vector<Eigen::Index> corrected_;  // elements whose step was clipped or that joined
   std::vector<Scalar> sorted_distance_;  // of the force-control starting guess
   Solution<Scalar> spare_solution_;      // storage for the next answer (recycle)
 };
 
-/// The Signorini problem g = h − δ + C p ≥ 0, p ≥ 0, g·p = 0 by bound-constrained
-/// conjugate gradients on the whole grid, approach or force control.
+/// The Signorini problem g = h − δ + C p ≥ 0, p ≥ 0, g·p = 0 by preconditioned
+/// bound-constrained conjugate gradients on the whole grid, approach or force control
+/// (docs/performance.md §9).
 ///
-/// `solve(h, loading, workspace)` starts from the workspace's pressures (from uniform
-/// pressure on its contact set, or on a Hertz-like overlap, when it has none); the answer
-/// is NORM's to the tolerance whatever the start.
+/// `solve(h, loading, workspace)` starts from the workspace's pressures (from a Hertz-like
+/// pressure on its contact set, or on the overlap at half the depth, when it has none);
+/// the answer is NORM's to the tolerance whatever the start.
 ///
 /// **Example**
 /// @code
@@ -81,7 +87,9 @@ class CgSolver : public detail::SolverBase<CgSolver<Scalar>, CgWorkspace<Scalar>
   CgSolver(const Grid<Scalar>& grid, const Material<Scalar>& material, Options options = {})
       : influence_(std::make_shared<const InfluenceTable<Scalar>>(grid, material)),
         options_(options),
-        convolution_(std::make_shared<const FftConvolution<Scalar>>(*influence_)) {
+        convolution_(std::make_shared<const FftConvolution<Scalar>>(*influence_)),
+        preconditioner_(std::make_shared<const FftConvolution<Scalar>>(
+            FftConvolution<Scalar>::approximate_inverse(*influence_))) {
     options_.validate();
   }
 
@@ -89,8 +97,9 @@ class CgSolver : public detail::SolverBase<CgSolver<Scalar>, CgWorkspace<Scalar>
   const InfluenceTable<Scalar>& influence() const { return *influence_; }
   const Options& options() const { return options_; }
 
-  /// As NormSolver::solve. Solution::iterations counts conjugate-gradient iterations,
-  /// Solution::residual is the complementarity error of Eq. (P1) relative to the depth.
+  /// As NormSolver::solve. Solution::iterations counts conjugate-gradient iterations (two
+  /// FFT products each: the preconditioner's and C's), Solution::residual is the
+  /// complementarity error of Eq. (P1) relative to the depth.
   /// @throws fastnorm::invalid_argument for wrong sizes, non-finite h, a bad Fn or a bad start
   Solution<Scalar> solve(const Eigen::Ref<const Vector>& undeformed_distance, const Loading<Scalar>& loading,
                          Workspace& workspace) const {
@@ -113,53 +122,63 @@ class CgSolver : public detail::SolverBase<CgSolver<Scalar>, CgWorkspace<Scalar>
   }
 
   /// The normal stiffness dFn/dδ (N/m) of the discrete problem at the contact set I of
-  /// `solution`: area · 1ᵀ x with C_II x = 1, by conjugate gradients on I with C by FFT
-  /// (C_II is symmetric positive definite), to a residual of options().tolerance relative
-  /// to 1 (docs/norm.md §4). NaN if that does not converge within max_iterations.
+  /// `solution`: area · 1ᵀ x with C_II x = 1, by conjugate gradients on I preconditioned
+  /// by K (C_II is symmetric positive definite), to a residual of options().tolerance
+  /// relative to 1 (docs/norm.md §4). NaN if that does not converge within max_iterations.
   Scalar normal_stiffness(const Solution<Scalar>& solution, Workspace& work) const {
     FASTNORM_CHECK(solution.in_contact.size() == grid().size(), "CgSolver::normal_stiffness: solution of another grid");
     prepare(work);
     Vector& x = work.pressure_;
     Vector& residual = work.gap_;
+    Vector& preconditioned = work.preconditioned_;
     Vector& direction = work.direction_;
     Vector& product = work.product_;
     const auto on_set = solution.in_contact.template cast<Scalar>();  // 1 on I, 0 elsewhere
     if (!solution.in_contact.any()) return Scalar(0);
     x.setZero();
     residual = on_set.matrix();
-    direction = residual;
     const Scalar target = options_.tolerance * options_.tolerance * residual.squaredNorm();
-    Scalar norm = residual.squaredNorm();
-    for (int iteration = 0; norm > target; ++iteration) {
+    Scalar residual_dot_preconditioned = 0;
+    for (int iteration = 0; residual.squaredNorm() > target; ++iteration) {
       if (iteration == options_.max_iterations) return std::numeric_limits<Scalar>::quiet_NaN();
+      work.preconditioner_->apply(residual, preconditioned);
+      preconditioned.array() *= on_set;
+      const Scalar next = residual.dot(preconditioned);
+      if (iteration == 0) direction = preconditioned;
+      else direction = preconditioned + (next / residual_dot_preconditioned) * direction;
+      residual_dot_preconditioned = next;
       work.convolution_->apply(direction, product);
       product.array() *= on_set;
-      const Scalar step = norm / direction.dot(product);
+      const Scalar step = next / direction.dot(product);
       x += step * direction;
       residual -= step * product;
-      const Scalar next = residual.squaredNorm();
-      direction = residual + (next / norm) * direction;
-      norm = next;
     }
     return grid().element_area() * x.sum();
   }
 
  private:
-  /// Up to this many clipped or joining elements per iteration, C p is updated directly
-  /// (cost N each) instead of by a new FFT product (docs/performance.md §2).
+  /// Up to this many clipped elements per iteration, C p is updated directly (cost N
+  /// each) instead of by a new FFT product (docs/performance.md §2).
   static constexpr std::size_t max_direct_corrections = 32;
 
-  /// Gives the workspace this solver's convolution and vectors of the grid's size.
+  /// Gives the workspace this solver's convolutions and vectors of the grid's size.
   void prepare(Workspace& work) const {
-    if (!work.convolution_ || !work.convolution_->same_kernel(*convolution_)) work.convolution_.emplace(*convolution_);
+    if (!work.convolution_ || !work.convolution_->same_kernel(*convolution_)) {
+      work.convolution_.emplace(*convolution_);
+      work.preconditioner_.emplace(*preconditioner_);
+    }
     const Index n = grid().size();
-    for (Vector* vector : {&work.pressure_, &work.displacement_, &work.gap_, &work.direction_, &work.product_}) {
+    for (Vector* vector : {&work.pressure_, &work.displacement_, &work.gap_, &work.direction_, &work.product_,
+                           &work.residual_, &work.previous_residual_, &work.preconditioned_}) {
       if (vector->size() != n) vector->resize(n);
     }
     work.corrected_.reserve(max_direct_corrections);
   }
 
-  /// One solve: the state of the iteration and its steps.
+  /// One solve: the state of the iteration and its steps (docs/performance.md §9). The
+  /// free set F holds the elements in contact (p > 0) and those that interpenetrate
+  /// (p = 0, g < 0); each iteration takes a conjugate direction on F from the
+  /// preconditioned gap, steps along it and clips negative pressures.
   struct Iteration {
     const InfluenceTable<Scalar>& influence;
     const Options& options;
@@ -169,39 +188,64 @@ class CgSolver : public detail::SolverBase<CgSolver<Scalar>, CgWorkspace<Scalar>
     Vector& p = work.pressure_;
     Vector& u = work.displacement_;  // C p, kept up to date
     Vector& gap = work.gap_;
+    Vector& w = work.residual_;  // the gap on F (less its mean over F in force control)
+    Vector& z = work.preconditioned_;
     Vector& t = work.direction_;
     Vector& r = work.product_;  // C t
     bool force_control = loading.control == Control::force;
     Scalar area = influence.grid().element_area();
     Scalar deepest = h.minCoeff();
-    Scalar approach = 0, previous_norm = 1;
-    Index contact = 0;
-    bool restart = true, fresh = true;  // fresh: u was computed by FFT, not updated
+    Scalar approach = 0, previous_wz = 0;
+    bool first = true;  // no direction yet
+    bool fresh = true;  // u was computed by FFT, not updated
 
-    /// The starting pressures: the workspace's, uniform on its contact set, or uniform on the
-    /// Hertz-like overlap; then C p.
+    /// The starting pressures: the workspace's, Hertz-like on its contact set, or
+    /// Hertz-like on half the overlap depth; then C p.
     void start() {
       const WarmStart<Scalar>& from = work.start_;
       if (from.has_pressure()) {
         p = from.pressure();
+      } else if (!from.contact_set().empty()) {
+        // Hertz-like on the set: √(level − h), the level the highest h of the set.
+        Scalar level = h(from.contact_set().front());
+        for (Index k : from.contact_set()) level = std::max(level, h(k));
+        p.setZero();
+        // (+ the least normal number: the set's highest element starts in contact too)
+        for (Index k : from.contact_set()) p(k) = std::sqrt(level - h(k)) + std::numeric_limits<Scalar>::min();
+        if (!force_control) scale_to_least_energy(Scalar(0));
       } else {
-        if (!from.contact_set().empty()) {
-          p.setZero();
-          for (Index k : from.contact_set()) p(k) = 1;
-        } else {
-          const Scalar guess = force_control ? detail::approach_guess<Scalar>(h, area, influence.combined_modulus(),
-                                                                             loading.normal_force, work.sorted_distance_)
-                                             : Scalar(0);
-          p = (h.array() < guess).template cast<Scalar>().matrix();
-        }
-        if (!force_control) {
-          // Scale so the mean displacement over the overlap matches its mean depth.
-          work.convolution_->apply(p, u);
-          p *= -h.cwiseMin(Scalar(0)).sum() / u.dot(p);
-        }
+        hertz_like_start();
       }
       if (force_control) p *= loading.normal_force / (area * p.sum());
       work.convolution_->apply(p, u);
+    }
+
+    /// p ∝ √(level − h) where h < level = (δ + min h)/2: a Hertz contact's pressure on its
+    /// contact area, which is the overlap at half the depth (docs/performance.md §9). δ is
+    /// 0 in approach control; in force control the Hertz-like guess of docs/norm.md Eq. (N3),
+    /// corrected once by Fn ∝ (δ − min h)^(3/2) from the force of that start.
+    void hertz_like_start() {
+      auto shape = [&](Scalar depth_to) {
+        const Scalar level = (depth_to + deepest) / 2;
+        p = (level - h.array()).cwiseMax(Scalar(0)).sqrt().matrix();
+      };
+      if (!force_control) {
+        shape(Scalar(0));
+        scale_to_least_energy(Scalar(0));
+        return;
+      }
+      const Scalar guess = detail::approach_guess<Scalar>(h, area, influence.combined_modulus(), loading.normal_force,
+                                                          work.sorted_distance_);
+      shape(guess);
+      scale_to_least_energy(guess);
+      const Scalar force = area * p.sum();
+      if (force > 0) shape(deepest + (guess - deepest) * std::pow(loading.normal_force / force, Scalar(2) / 3));
+    }
+
+    /// Scales p to the least energy ½ pᵀC p + (h − δ)ᵀp along p.
+    void scale_to_least_energy(Scalar depth_to) {
+      work.convolution_->apply(p, u);
+      p *= std::max(Scalar(0), -(h.dot(p) - depth_to * p.sum()) / u.dot(p));
     }
 
     /// The loop: complementarity error judged only on a freshly computed C p.
@@ -225,6 +269,7 @@ class CgSolver : public detail::SolverBase<CgSolver<Scalar>, CgWorkspace<Scalar>
           break;
         }
         ++iteration;
+        precondition();
         conjugate_direction();
         take_step(step_length());
       }
@@ -240,16 +285,19 @@ class CgSolver : public detail::SolverBase<CgSolver<Scalar>, CgWorkspace<Scalar>
     /// contact; returns the complementarity error, Eq. (P1).
     Scalar gap_and_error() {
       gap = h + u;
-      contact = 0;
       approach = 0;
       if (force_control) {
+        // Summed in at least double: in float the round-off of a sum over 10⁴ elements
+        // would be above the tolerance.
+        detail::KernelWork<Scalar> sum = 0;
+        Index contact = 0;
         for (Index k = 0; k < p.size(); ++k) {
           if (p(k) > 0) {
-            approach += gap(k);
+            sum += static_cast<detail::KernelWork<Scalar>>(gap(k));
             ++contact;
           }
         }
-        approach /= static_cast<Scalar>(contact);
+        approach = static_cast<Scalar>(sum / static_cast<detail::KernelWork<Scalar>>(contact));
         gap.array() -= approach;
       }
       Scalar error = 0;
@@ -257,56 +305,79 @@ class CgSolver : public detail::SolverBase<CgSolver<Scalar>, CgWorkspace<Scalar>
       return error;
     }
 
-    /// Conjugate direction t on the contact set (the gap there is its residual).
-    void conjugate_direction() {
-      Scalar norm = 0;
+    bool in_free_set(Index k) const { return p(k) > 0 || gap(k) < 0; }
+
+    /// w = the gap on F and z = K w on F; in force control both with their mean over F
+    /// taken out, so that steps along them keep Σp (the deflation of the constant).
+    void precondition() {
+      w.swap(work.previous_residual_);
+      Scalar sum = 0;
+      Index count = 0;
       for (Index k = 0; k < p.size(); ++k) {
-        if (p(k) > 0) norm += gap(k) * gap(k);
+        const bool free = in_free_set(k);
+        w(k) = free ? gap(k) : Scalar(0);
+        sum += w(k);
+        count += free;
       }
-      const Scalar beta = restart ? Scalar(0) : norm / previous_norm;
-      previous_norm = norm;
-      // On a restart t holds nothing yet (uninitialised storage: 0·t could be NaN).
-      for (Index k = 0; k < p.size(); ++k) t(k) = p(k) > 0 ? gap(k) + (restart ? Scalar(0) : beta * t(k)) : Scalar(0);
+      if (force_control) remove_mean_on_free_set(w, sum / static_cast<Scalar>(count));
+      work.preconditioner_->apply(w, z);
+      sum = 0;
+      for (Index k = 0; k < p.size(); ++k) {
+        if (!in_free_set(k)) z(k) = 0;
+        sum += z(k);
+      }
+      if (force_control) remove_mean_on_free_set(z, sum / static_cast<Scalar>(count));
     }
 
-    /// r = C t and the step along t that minimises the energy on the contact set (with the
-    /// mean of r removed in force control, which keeps Σp fixed).
+    void remove_mean_on_free_set(Vector& vector, Scalar mean) const {
+      for (Index k = 0; k < p.size(); ++k) {
+        if (in_free_set(k)) vector(k) -= mean;
+      }
+    }
+
+    /// t = z + β t on F, in force control less its mean. β by Polak and Ribière, at least
+    /// 0, with no restart when the contact set changes: the formula restarts by itself
+    /// (β ≈ 0) when the new gap is far from conjugate to the last, and keeps the directions
+    /// when a few edge elements change (restarting there made a 960² case zigzag;
+    /// docs/performance.md §9).
+    void conjugate_direction() {
+      const Scalar wz = w.dot(z);
+      const Scalar beta =
+          first ? Scalar(0) : std::max(Scalar(0), (wz - work.previous_residual_.dot(z)) / previous_wz);
+      previous_wz = wz;
+      Scalar sum = 0;
+      Index count = 0;
+      for (Index k = 0; k < p.size(); ++k) {
+        if (!in_free_set(k)) {
+          t(k) = 0;
+          continue;
+        }
+        t(k) = first ? z(k) : z(k) + beta * t(k);  // on the first iteration t holds nothing yet
+        sum += t(k);
+        ++count;
+      }
+      if (force_control) remove_mean_on_free_set(t, sum / static_cast<Scalar>(count));
+    }
+
+    /// r = C t and the step along t that minimises the energy (t is 0 off F; in force
+    /// control Σt = 0, so δ drops out).
     Scalar step_length() {
       work.convolution_->apply(t, r);
-      Scalar r_mean = 0;
-      if (force_control) {
-        for (Index k = 0; k < p.size(); ++k) {
-          if (p(k) > 0) r_mean += r(k);
-        }
-        r_mean /= static_cast<Scalar>(contact);
-      }
-      Scalar gt = 0, rt = 0;
-      for (Index k = 0; k < p.size(); ++k) {
-        if (p(k) > 0) {
-          gt += gap(k) * t(k);
-          rt += (r(k) - r_mean) * t(k);
-        }
-      }
-      return gt / rt;
+      const Scalar curvature = r.dot(t);
+      return curvature > 0 ? gap.dot(t) / curvature : Scalar(0);
     }
 
-    /// Step, projection on p ≥ 0, and the elements that interpenetrate join with −step·g.
-    /// u follows as u − step·r plus C times what the projection and the joins changed.
+    /// Step along −t, projection on p ≥ 0; an element of F with p = 0 joins when the step
+    /// gives it pressure. u follows as u − step·r plus C times what the projection changed.
     void take_step(Scalar step) {
-      restart = false;
+      first = false;
       work.corrected_.clear();
       bool overflow = false;
-      auto correct = [&](Index k) {
-        if (work.corrected_.size() < max_direct_corrections) work.corrected_.push_back(k); else overflow = true;
-      };
       for (Index k = 0; k < p.size(); ++k) {
-        if (p(k) > 0) {
-          p(k) -= step * t(k);
-          if (p(k) < 0) correct(k);
-        } else if (gap(k) < 0) {
-          p(k) = -step * gap(k);
-          restart = true;
-          correct(k);
+        if (t(k) == 0) continue;
+        p(k) -= step * t(k);
+        if (p(k) < 0) {
+          if (work.corrected_.size() < max_direct_corrections) work.corrected_.push_back(k); else overflow = true;
         }
       }
       if (overflow) {
@@ -316,10 +387,8 @@ class CgSolver : public detail::SolverBase<CgSolver<Scalar>, CgWorkspace<Scalar>
       } else {
         u -= step * r;
         for (Index k : work.corrected_) {
-          // Clipped: p went below 0 by the step, C(·, k) adds back −p_k. Joined: adds p_k.
-          const Scalar change = t(k) != 0 ? -p(k) : p(k);
-          if (t(k) != 0) p(k) = 0;
-          influence.add_displacement(k, change, u);
+          influence.add_displacement(k, -p(k), u);  // the clip adds −p_k on element k
+          p(k) = 0;
         }
         fresh = false;
       }
@@ -333,7 +402,9 @@ class CgSolver : public detail::SolverBase<CgSolver<Scalar>, CgWorkspace<Scalar>
 
   std::shared_ptr<const InfluenceTable<Scalar>> influence_;
   Options options_;
-  std::shared_ptr<const FftConvolution<Scalar>> convolution_;  // copied into each workspace
+  // Copied into each workspace: C (zero-padded) and its approximate inverse K.
+  std::shared_ptr<const FftConvolution<Scalar>> convolution_;
+  std::shared_ptr<const FftConvolution<Scalar>> preconditioner_;
 };
 
 }  // namespace fastnorm

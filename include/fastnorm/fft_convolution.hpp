@@ -8,7 +8,9 @@
 
 #include <Eigen/Core>
 #include <algorithm>
+#include <cmath>
 #include <complex>
+#include <limits>
 #include <memory>
 #include <vector>
 
@@ -60,44 +62,17 @@ class FftConvolution {
   using Vector = Eigen::Matrix<Scalar, Eigen::Dynamic, 1>;
   using Complex = std::complex<Scalar>;
 
-  explicit FftConvolution(const InfluenceTable<Scalar>& influence)
-      : mx_(influence.grid().mx()),
-        my_(influence.grid().my()),
-        nx_(detail::smooth_fft_length(2 * mx_, 4)),  // multiple of 4: kissfft's fast real path
-        ny_(detail::smooth_fft_length(std::max<Index>(2 * my_ - 1, 2), 1)),  // kissfft needs n ≥ 2
-        half_(nx_ / 2 + 1),
-        fft_(typename Eigen::FFT<Scalar>::impl_type(),
-             static_cast<typename Eigen::FFT<Scalar>::Flag>(Eigen::FFT<Scalar>::Unscaled |
-                                                           Eigen::FFT<Scalar>::HalfSpectrum)),
-        spectrum_(half_, ny_),
-        line_(static_cast<std::size_t>(ny_)),
-        line_spectrum_(static_cast<std::size_t>(ny_)),
-        real_line_(nx_) {
-    // The kernel on the circular nx × ny grid: offset d sits at d mod n.
-    Vector row(nx_);
-    for (Index j = 0; j < ny_; ++j) {
-      const Index dj = j < my_ ? j : j - ny_;
-      row.setZero();
-      if (dj > -my_) {
-        for (Index i = 0; i < nx_; ++i) {
-          const Index di = i < mx_ ? i : i - nx_;
-          if (di > -mx_) row(i) = influence.at_offset(di, dj);
-        }
-      }
-      fft_.fwd(spectrum_.col(j).data(), row.data(), nx_);
-    }
-    auto symbol = std::make_shared<RealMatrix>(half_, ny_);
-    for (Index kx = 0; kx < half_; ++kx) {
-      forward_along_y(kx);
-      // Even kernel: the imaginary parts are round-off; keep the real part.
-      for (Index ky = 0; ky < ny_; ++ky) {
-        (*symbol)(kx, ky) = line_spectrum_[static_cast<std::size_t>(ky)].real() / static_cast<Scalar>(nx_ * ny_);
-      }
-    }
-    symbol_ = std::move(symbol);
-    // One product creates the inverse plans and buffers, so that apply() never allocates.
-    Vector zero = Vector::Zero(mx_ * my_);
-    apply(zero, zero);
+  explicit FftConvolution(const InfluenceTable<Scalar>& influence) : FftConvolution(influence, Kernel::toeplitz) {}
+
+  /// CG's preconditioner K ≈ C⁻¹ (docs/performance.md §9): the inverse of the circulant
+  /// matrix whose kernel is C at the nearest periodic image of every offset, on a period
+  /// of about the grid's own size (nx ≥ mx, ny ≥ my). Its symbol is C's inverted: it grows
+  /// as the wavenumber, as the inverse of the half-space operator does, and its kernel
+  /// decays as 1/r³, so one grid's period is enough (the wrapped-around couplings are
+  /// small) and its transforms cost a quarter of C's. `apply(w, z)` gives z = K w (Pa) for
+  /// a gap w (m).
+  static FftConvolution approximate_inverse(const InfluenceTable<Scalar>& influence) {
+    return FftConvolution(influence, Kernel::periodic_inverse);
   }
 
   Index padded_x() const { return nx_; }
@@ -131,6 +106,65 @@ class FftConvolution {
   }
 
  private:
+  enum class Kernel { toeplitz, periodic_inverse };
+
+  FftConvolution(const InfluenceTable<Scalar>& influence, Kernel kernel)
+      : mx_(influence.grid().mx()),
+        my_(influence.grid().my()),
+        // Zero-padded to 2m − 1 or periodic over m; nx a multiple of 4 (kissfft's fast real
+        // path), ny ≥ 2 (kissfft's least length).
+        nx_(detail::smooth_fft_length(kernel == Kernel::toeplitz ? 2 * mx_ : mx_, 4)),
+        ny_(detail::smooth_fft_length(std::max<Index>(kernel == Kernel::toeplitz ? 2 * my_ - 1 : my_, 2), 1)),
+        half_(nx_ / 2 + 1),
+        fft_(typename Eigen::FFT<Scalar>::impl_type(),
+             static_cast<typename Eigen::FFT<Scalar>::Flag>(Eigen::FFT<Scalar>::Unscaled |
+                                                           Eigen::FFT<Scalar>::HalfSpectrum)),
+        spectrum_(half_, ny_),
+        line_(static_cast<std::size_t>(ny_)),
+        line_spectrum_(static_cast<std::size_t>(ny_)),
+        real_line_(nx_) {
+    const Grid<Scalar>& grid = influence.grid();
+    // C at offset (di, dj), beyond the table by Love's formula.
+    auto coefficient = [&](Index di, Index dj) {
+      if (std::abs(di) < mx_ && std::abs(dj) < my_) return influence.at_offset(di, dj);
+      return love_coefficient<Scalar>(static_cast<Scalar>(di) * grid.dx(), static_cast<Scalar>(dj) * grid.dy(),
+                                      grid.dx() / 2, grid.dy() / 2, influence.combined_modulus());
+    };
+    // The kernel on the circular nx × ny grid: offset d sits at d mod n. Zero-padded, the
+    // circular convolution equals the Toeplitz product on the grid; periodic, every entry
+    // holds its offset's nearest image.
+    Vector row(nx_);
+    for (Index j = 0; j < ny_; ++j) {
+      const Index dj = kernel == Kernel::toeplitz ? (j < my_ ? j : j - ny_) : (j <= ny_ / 2 ? j : j - ny_);
+      for (Index i = 0; i < nx_; ++i) {
+        if (kernel == Kernel::toeplitz) {
+          const Index di = i < mx_ ? i : i - nx_;
+          row(i) = di > -mx_ && dj > -my_ ? influence.at_offset(di, dj) : Scalar(0);
+        } else {
+          row(i) = coefficient(i <= nx_ / 2 ? i : i - nx_, dj);
+        }
+      }
+      fft_.fwd(spectrum_.col(j).data(), row.data(), nx_);
+    }
+    auto symbol = std::make_shared<RealMatrix>(half_, ny_);
+    for (Index kx = 0; kx < half_; ++kx) {
+      forward_along_y(kx);
+      // Even kernel: the imaginary parts are round-off; keep the real part.
+      for (Index ky = 0; ky < ny_; ++ky) (*symbol)(kx, ky) = line_spectrum_[static_cast<std::size_t>(ky)].real();
+    }
+    if (kernel == Kernel::periodic_inverse) {
+      // C's periodic symbol is positive on every grid tried (its smallest value is about
+      // 1/n of its largest); a floor keeps K positive definite whatever the grid.
+      const Scalar floor = symbol->maxCoeff() * std::sqrt(std::numeric_limits<Scalar>::epsilon());
+      *symbol = symbol->cwiseMax(floor).cwiseInverse();
+    }
+    *symbol /= static_cast<Scalar>(nx_ * ny_);  // the unscaled inverse transform's factor
+    symbol_ = std::move(symbol);
+    // One product creates the inverse plans and buffers, so that apply() never allocates.
+    Vector zero = Vector::Zero(mx_ * my_);
+    apply(zero, zero);
+  }
+
   /// Row kx of spectrum_ transformed along y into line_spectrum_.
   void forward_along_y(Index kx) {
     for (Index ky = 0; ky < ny_; ++ky) line_[static_cast<std::size_t>(ky)] = spectrum_(kx, ky);

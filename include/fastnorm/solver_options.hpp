@@ -3,6 +3,7 @@
 /// The settings of every solver, in one light header (solver_spec.hpp gathers them without
 /// pulling in the solvers themselves).
 
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <limits>
@@ -43,8 +44,10 @@ template <typename Scalar = double>
 struct CgOptions {
   /// Stop when the complementarity error (docs/performance.md Eq. (P1)) — the largest
   /// |gap| where p > 0 and the largest interpenetration where p = 0 — is at most
-  /// `tolerance` times the largest interpenetration of the undeformed surfaces.
-  Scalar tolerance = Scalar(1e-9);
+  /// `tolerance` times the largest interpenetration of the undeformed surfaces. The
+  /// default is 1e-9, or 32 ε of Scalar where that is larger (3.8e-6 for float, whose
+  /// FFT products cannot reach 1e-9).
+  Scalar tolerance = std::max(Scalar(1e-9), 32 * std::numeric_limits<Scalar>::epsilon());
   /// Most iterations (products C t) before Status::iteration_limit.
   int max_iterations = 5000;
 

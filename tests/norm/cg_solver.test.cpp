@@ -3,6 +3,7 @@
 // (docs/performance.md §2). Its agreement with CONTACT is in peer_cases.test.cpp.
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <limits>
 #include <tuple>
 #include <fastnorm/cg_solver.hpp>
 #include <fastnorm/hertz.hpp>
@@ -122,20 +123,52 @@ TEST_CASE("CG reports no contact, the iteration limit and bad input", "[norm][cg
   CHECK_THROWS_WITH(fastnorm::CgSolver<>(grid, steel, bad), Contains("max_iterations"));
 }
 
-TEST_CASE("CG runs in single precision", "[norm][cg]") {
-  auto hertz_problem = [](auto scalar) {
+TEST_CASE("CG runs in single precision with its default tolerance", "[norm][cg]") {
+  // 1e-9 is below float's resolution; the default is 32 ε of the scalar type.
+  CHECK(fastnorm::CgOptions<float>().tolerance == Approx(32 * std::numeric_limits<float>::epsilon()));
+  CHECK(fastnorm::CgOptions<double>().tolerance == 1e-9);
+  auto hertz_problem = [](auto scalar, Eigen::Index n) {
     using Scalar = decltype(scalar);
     const fastnorm::Material<Scalar> material(Scalar(2.1e11), Scalar(0.3));
     const auto hertz = fastnorm::hertz_from_force(Scalar(0.3), Scalar(0.3), material.combined_modulus(), Scalar(5e4));
-    const auto hertz_grid = fastnorm::hertz_grid(hertz, 20);
+    const auto hertz_grid = fastnorm::hertz_grid(hertz, n);
     return std::make_tuple(hertz_grid, material, fastnorm::hertz_undeformed_distance(hertz_grid, Scalar(0.3), Scalar(0.3)));
   };
-  const auto [grid_f, steel_f, h_f] = hertz_problem(0.0f);
-  fastnorm::CgOptions<float> options;
-  options.tolerance = 1e-5f;
-  const auto single = fastnorm::CgSolver<float>(grid_f, steel_f, options).solve(h_f, fastnorm::Loading<float>::force(5e4f));
-  REQUIRE(single.status == fastnorm::Status::converged);
-  const auto [grid_d, steel_d, h_d] = hertz_problem(0.0);
-  const auto exact = fastnorm::NormSolver<>(grid_d, steel_d).solve(h_d, fastnorm::Loading<>::force(5e4));
-  CHECK(static_cast<double>(single.approach) == Approx(exact.approach).epsilon(1e-4));
+  for (Eigen::Index n : {20, 61}) {
+    const auto [grid_f, steel_f, h_f] = hertz_problem(0.0f, n);
+    const auto [grid_d, steel_d, h_d] = hertz_problem(0.0, n);
+    const auto exact = fastnorm::NormSolver<>(grid_d, steel_d).solve(h_d, fastnorm::Loading<>::force(5e4));
+    const fastnorm::CgSolver<float> cg(grid_f, steel_f);
+    for (const auto& loading : {fastnorm::Loading<float>::force(5e4f), fastnorm::Loading<float>::approach()}) {
+      const bool force_control = loading.control == fastnorm::Control::force;
+      const Eigen::VectorXf h = force_control ? h_f : Eigen::VectorXf(h_f.array() - static_cast<float>(exact.approach));
+      const auto single = cg.solve(h, loading);
+      INFO(n << "x" << n << (force_control ? " force" : " approach") << " control: " << single.iterations
+             << " iterations, residual " << single.residual);
+      REQUIRE(single.status == fastnorm::Status::converged);
+      CHECK(single.residual <= cg.options().tolerance);
+      CHECK(static_cast<double>(single.normal_force) == Approx(exact.normal_force).epsilon(1e-4));
+      CHECK((single.in_contact != exact.in_contact).count() <= 4);  // edge elements within float's reach
+    }
+  }
+}
+
+TEST_CASE("CG's iterations hardly grow with the grid", "[norm][cg]") {
+  // The preconditioner makes the count nearly independent of N (docs/performance.md §9):
+  // the Hertz sphere at 20² and 100² (25 times the elements), both controls.
+  const auto hertz = fastnorm::hertz_from_force(0.3, 0.3, steel.combined_modulus(), 5e4);
+  for (const auto& loading : {fastnorm::Loading<>::force(5e4), fastnorm::Loading<>::approach()}) {
+    int iterations[2] = {0, 0};
+    for (int s = 0; s < 2; ++s) {
+      const auto hertz_grid = fastnorm::hertz_grid(hertz, s == 0 ? 20 : 100);
+      Eigen::VectorXd h = fastnorm::hertz_undeformed_distance(hertz_grid, 0.3, 0.3);
+      if (loading.control == fastnorm::Control::approach) h.array() -= hertz.approach;
+      const auto solution = fastnorm::CgSolver<>(hertz_grid, steel).solve(h, loading);
+      REQUIRE(solution.status == fastnorm::Status::converged);
+      iterations[s] = solution.iterations;
+    }
+    INFO("iterations 20x20: " << iterations[0] << ", 100x100: " << iterations[1]);
+    CHECK(iterations[0] <= 12);
+    CHECK(iterations[1] <= 12);
+  }
 }

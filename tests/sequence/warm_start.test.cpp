@@ -11,19 +11,19 @@ namespace {
 
 const fastnorm::Material<> steel(2.1e11, 0.3);
 
-/// A Hertz indenter (R = 0.3 m × 0.2 m) moved in steps of a tenth of an element in x and
-/// tilted a little more each step: h_s(x, y) = h(x − s·dx/10, y) + s·2e-4·y − depth.
+/// A Hertz indenter (R = 0.3 m × 0.2 m) moved in steps of `step` elements in x and tilted
+/// a little more each step: h_s(x, y) = h(x − s·step·dx, y) + s·step·2e-3·y − depth.
 struct Sequence {
   fastnorm::Grid<> grid;
   std::vector<Eigen::VectorXd> h;
 };
 
-Sequence moving_indenter(Eigen::Index n, int steps, double depth) {
+Sequence moving_indenter(Eigen::Index n, int steps, double depth, double step = 0.1) {
   const auto hertz = fastnorm::hertz_from_force(0.3, 0.2, steel.combined_modulus(), 5e4);
   const auto grid = fastnorm::hertz_grid(hertz, n, 1.4);
   Sequence sequence{grid, {}};
   for (int s = 0; s < steps; ++s) {
-    const double shift = s * grid.dx() / 10, tilt = s * 2e-4;
+    const double shift = s * step * grid.dx(), tilt = s * step * 2e-3;
     const fastnorm::Grid<> shifted(grid.mx(), grid.my(), grid.dx(), grid.dy(), grid.x0() - shift, grid.y0());
     Eigen::VectorXd h = fastnorm::hertz_undeformed_distance(shifted, 0.3, 0.2);
     for (Eigen::Index k = 0; k < grid.size(); ++k) h(k) += tilt * grid.y_of(k) - depth;
@@ -34,13 +34,15 @@ Sequence moving_indenter(Eigen::Index n, int steps, double depth) {
 
 /// Runs the sequence warm and cold; pressures must agree to `pressure_tolerance` of the peak.
 /// What a warm start does to the iteration count: the reduced solvers follow the cold path
-/// (their answer depends on it); NORM starts from the last set; CG from the last pressures.
-enum class Iterations { same_path, no_more, fewer };
+/// (their answer depends on it); NORM starts from the last set; CG from the last pressures,
+/// which pay only when they are closer than its cold start (`any`: not checked).
+enum class Iterations { same_path, no_more, fewer, any };
 
 /// Force control on the unloaded indenter, approach control pressed in by 50 µm.
 void require_warm_equals_cold(const std::string& name, double pressure_tolerance, Iterations iterations,
-                              const fastnorm::Loading<>& loading) {
-  const Sequence sequence = moving_indenter(24, 12, loading.control == fastnorm::Control::approach ? 5e-5 : 0.0);
+                              const fastnorm::Loading<>& loading, double step = 0.1) {
+  const Sequence sequence =
+      moving_indenter(24, 12, loading.control == fastnorm::Control::approach ? 5e-5 : 0.0, step);
   fastnorm::AnySolver<> solver(name, sequence.grid, steel);
   int warm_iterations = 0, cold_iterations = 0;
   for (std::size_t s = 0; s < sequence.h.size(); ++s) {
@@ -64,6 +66,7 @@ void require_warm_equals_cold(const std::string& name, double pressure_tolerance
     case Iterations::same_path: CHECK(warm_iterations == cold_iterations); break;
     case Iterations::no_more: CHECK(warm_iterations <= cold_iterations); break;
     case Iterations::fewer: CHECK(warm_iterations < cold_iterations); break;
+    case Iterations::any: break;
   }
 
   // After reset() the next solve_next is a cold solve again.
@@ -94,8 +97,14 @@ TEST_CASE("Warm reduced solvers give the cold answers along a moving indenter", 
 TEST_CASE("Warm CG gives the cold answers along a moving indenter", "[sequence][warm][cg]") {
   // Both satisfy the Signorini conditions to 1e-9 of the depth; the pressures then agree
   // to about 1e-7 of the peak (measured 2e-8 on the peer cases).
-  require_warm_equals_cold("cg", 1e-6, Iterations::fewer, fastnorm::Loading<>::force(5e4));
-  require_warm_equals_cold("cg", 1e-6, Iterations::fewer, fastnorm::Loading<>::approach());
+  // Steps of a hundredth of an element, as a time loop's: the last pressures are the better
+  // start. Steps of a tenth: the cold start (Hertz-like on half the overlap depth) is as
+  // close on this Hertz indenter, and the warm solves take as many iterations (measured 97
+  // warm, 95 cold in force control; 116 and 105 in approach control).
+  for (const auto& loading : {fastnorm::Loading<>::force(5e4), fastnorm::Loading<>::approach()}) {
+    require_warm_equals_cold("cg", 1e-6, Iterations::fewer, loading, 0.01);
+    require_warm_equals_cold("cg", 1e-6, Iterations::any, loading, 0.1);
+  }
 }
 
 TEST_CASE("A cold solve does not depend on what the solver solved before", "[sequence][warm]") {
