@@ -20,15 +20,6 @@ inline std::atomic<long>& allocation_counter() {
   return count;
 }
 
-/// Allocations so far, or -1 in a build without the wrap.
-inline long allocation_count() {
-#if defined(FASTNORM_COUNT_MALLOC)
-  return allocation_counter().load(std::memory_order_relaxed);
-#else
-  return -1;
-#endif
-}
-
 /// Heap bytes held by the executable's own allocations now, and the most held since the
 /// last reset_peak_bytes(): the usable sizes of the blocks, as the allocator reports them.
 struct HeapBytes {
@@ -38,20 +29,21 @@ inline HeapBytes& heap_bytes() {
   static HeapBytes bytes;
   return bytes;
 }
-inline long held_bytes() {
+
+/// A counter's value, or -1 in a build without the wrap.
+inline long counted(const std::atomic<long>& counter) {
 #if defined(FASTNORM_COUNT_MALLOC)
-  return heap_bytes().held.load(std::memory_order_relaxed);
+  return counter.load(std::memory_order_relaxed);
 #else
+  (void)counter;
   return -1;
 #endif
 }
-inline long peak_bytes() {
-#if defined(FASTNORM_COUNT_MALLOC)
-  return heap_bytes().peak.load(std::memory_order_relaxed);
-#else
-  return -1;
-#endif
-}
+
+/// Allocations so far.
+inline long allocation_count() { return counted(allocation_counter()); }
+inline long held_bytes() { return counted(heap_bytes().held); }
+inline long peak_bytes() { return counted(heap_bytes().peak); }
 inline void reset_peak_bytes() { heap_bytes().peak.store(heap_bytes().held.load()); }
 
 }  // namespace fastnorm_example

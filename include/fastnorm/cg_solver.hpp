@@ -52,11 +52,11 @@ class CgWorkspace {
   friend class CgSolver<Scalar>;
   using Vector = Eigen::Matrix<Scalar, Eigen::Dynamic, 1>;
   WarmStart<Scalar> start_;
-  std::optional<FftConvolution<Scalar>> convolution_;     // copies of the solver's
-  std::optional<FftConvolution<Scalar>> preconditioner_;  //
+  // Copies of the solver's C and K.
+  std::optional<FftConvolution<Scalar>> convolution_, preconditioner_;
   Vector pressure_, displacement_, gap_, direction_, product_;
   Vector residual_, previous_residual_, preconditioned_;  // w, the last w, z = K w
-  std::vector<Eigen::Index> corrected_;  // elements whose step was clipped or that joined
+  std::vector<Eigen::Index> corrected_;  // elements whose step was clipped
   std::vector<Scalar> sorted_distance_;  // of the force-control starting guess
   Solution<Scalar> spare_solution_;      // storage for the next answer (recycle)
 };
@@ -196,42 +196,49 @@ class CgSolver : public detail::SolverBase<CgSolver<Scalar>, CgWorkspace<Scalar>
     Scalar area = influence.grid().element_area();
     Scalar deepest = h.minCoeff();
     Scalar approach = 0, previous_wz = 0;
+    Index free_count = 0;  // elements in F this iteration
     bool first = true;  // no direction yet
     bool fresh = true;  // u was computed by FFT, not updated
 
-    /// The starting pressures: the workspace's, Hertz-like on its contact set, or
-    /// Hertz-like on half the overlap depth; then C p.
+    /// The starting pressures and u = C p: the workspace's pressures, or a Hertz-like shape
+    /// (on the workspace's contact set, or on the overlap at half the depth) scaled to the
+    /// least energy in approach control. In force control every start is scaled to the load.
     void start() {
       const WarmStart<Scalar>& from = work.start_;
       if (from.has_pressure()) {
         p = from.pressure();
-      } else if (!from.contact_set().empty()) {
-        // Hertz-like on the set: √(level − h), the level the highest h of the set.
-        Scalar level = h(from.contact_set().front());
-        for (Index k : from.contact_set()) level = std::max(level, h(k));
-        p.setZero();
-        // (+ the least normal number: the set's highest element starts in contact too)
-        for (Index k : from.contact_set()) p(k) = std::sqrt(level - h(k)) + std::numeric_limits<Scalar>::min();
-        if (!force_control) scale_to_least_energy(Scalar(0));
       } else {
-        hertz_like_start();
+        if (!from.contact_set().empty()) hertz_like_on_set(from.contact_set());
+        else hertz_like_on_overlap();
+        if (!force_control) {
+          scale_to_least_energy(Scalar(0));  // u = C p with it
+          return;
+        }
       }
       if (force_control) p *= loading.normal_force / (area * p.sum());
       work.convolution_->apply(p, u);
+    }
+
+    /// p = √(level − h) on the set, the level its highest h (+ the least normal number: that
+    /// element starts in contact too).
+    void hertz_like_on_set(const std::vector<Index>& set) {
+      Scalar level = h(set.front());
+      for (Index k : set) level = std::max(level, h(k));
+      p.setZero();
+      for (Index k : set) p(k) = std::sqrt(level - h(k)) + std::numeric_limits<Scalar>::min();
     }
 
     /// p ∝ √(level − h) where h < level = (δ + min h)/2: a Hertz contact's pressure on its
     /// contact area, which is the overlap at half the depth (docs/performance.md §9). δ is
     /// 0 in approach control; in force control the Hertz-like guess of docs/norm.md Eq. (N3),
     /// corrected once by Fn ∝ (δ − min h)^(3/2) from the force of that start.
-    void hertz_like_start() {
+    void hertz_like_on_overlap() {
       auto shape = [&](Scalar depth_to) {
         const Scalar level = (depth_to + deepest) / 2;
         p = (level - h.array()).cwiseMax(Scalar(0)).sqrt().matrix();
       };
       if (!force_control) {
         shape(Scalar(0));
-        scale_to_least_energy(Scalar(0));
         return;
       }
       const Scalar guess = detail::approach_guess<Scalar>(h, area, influence.combined_modulus(), loading.normal_force,
@@ -242,10 +249,12 @@ class CgSolver : public detail::SolverBase<CgSolver<Scalar>, CgWorkspace<Scalar>
       if (force > 0) shape(deepest + (guess - deepest) * std::pow(loading.normal_force / force, Scalar(2) / 3));
     }
 
-    /// Scales p to the least energy ½ pᵀC p + (h − δ)ᵀp along p.
+    /// Scales p, and u = C p with it, to the least energy ½ pᵀC p + (h − δ)ᵀp along p.
     void scale_to_least_energy(Scalar depth_to) {
       work.convolution_->apply(p, u);
-      p *= std::max(Scalar(0), -(h.dot(p) - depth_to * p.sum()) / u.dot(p));
+      const Scalar scale = std::max(Scalar(0), -(h.dot(p) - depth_to * p.sum()) / u.dot(p));
+      p *= scale;
+      u *= scale;
     }
 
     /// The loop: complementarity error judged only on a freshly computed C p.
@@ -311,25 +320,24 @@ class CgSolver : public detail::SolverBase<CgSolver<Scalar>, CgWorkspace<Scalar>
     /// taken out, so that steps along them keep Σp (the deflation of the constant).
     void precondition() {
       w.swap(work.previous_residual_);
-      Scalar sum = 0;
-      Index count = 0;
+      free_count = 0;
       for (Index k = 0; k < p.size(); ++k) {
         const bool free = in_free_set(k);
         w(k) = free ? gap(k) : Scalar(0);
-        sum += w(k);
-        count += free;
+        free_count += free;
       }
-      if (force_control) remove_mean_on_free_set(w, sum / static_cast<Scalar>(count));
+      remove_mean_on_free_set(w);
       work.preconditioner_->apply(w, z);
-      sum = 0;
       for (Index k = 0; k < p.size(); ++k) {
         if (!in_free_set(k)) z(k) = 0;
-        sum += z(k);
       }
-      if (force_control) remove_mean_on_free_set(z, sum / static_cast<Scalar>(count));
+      remove_mean_on_free_set(z);
     }
 
-    void remove_mean_on_free_set(Vector& vector, Scalar mean) const {
+    /// In force control: `vector` (0 off F) less its mean over F, on F.
+    void remove_mean_on_free_set(Vector& vector) const {
+      if (!force_control) return;
+      const Scalar mean = vector.sum() / static_cast<Scalar>(free_count);
       for (Index k = 0; k < p.size(); ++k) {
         if (in_free_set(k)) vector(k) -= mean;
       }
@@ -345,18 +353,11 @@ class CgSolver : public detail::SolverBase<CgSolver<Scalar>, CgWorkspace<Scalar>
       const Scalar beta =
           first ? Scalar(0) : std::max(Scalar(0), (wz - work.previous_residual_.dot(z)) / previous_wz);
       previous_wz = wz;
-      Scalar sum = 0;
-      Index count = 0;
       for (Index k = 0; k < p.size(); ++k) {
-        if (!in_free_set(k)) {
-          t(k) = 0;
-          continue;
-        }
-        t(k) = first ? z(k) : z(k) + beta * t(k);  // on the first iteration t holds nothing yet
-        sum += t(k);
-        ++count;
+        // On the first iteration t holds nothing yet.
+        t(k) = !in_free_set(k) ? Scalar(0) : first ? z(k) : z(k) + beta * t(k);
       }
-      if (force_control) remove_mean_on_free_set(t, sum / static_cast<Scalar>(count));
+      remove_mean_on_free_set(t);
     }
 
     /// r = C t and the step along t that minimises the energy (t is 0 off F; in force

@@ -133,16 +133,14 @@ class FftConvolution {
     // The kernel on the circular nx × ny grid: offset d sits at d mod n. Zero-padded, the
     // circular convolution equals the Toeplitz product on the grid; periodic, every entry
     // holds its offset's nearest image.
+    const bool padded = kernel == Kernel::toeplitz;
+    auto offset = [&](Index index, Index n, Index m) { return index < (padded ? m : n / 2 + 1) ? index : index - n; };
     Vector row(nx_);
     for (Index j = 0; j < ny_; ++j) {
-      const Index dj = kernel == Kernel::toeplitz ? (j < my_ ? j : j - ny_) : (j <= ny_ / 2 ? j : j - ny_);
+      const Index dj = offset(j, ny_, my_);
       for (Index i = 0; i < nx_; ++i) {
-        if (kernel == Kernel::toeplitz) {
-          const Index di = i < mx_ ? i : i - nx_;
-          row(i) = di > -mx_ && dj > -my_ ? influence.at_offset(di, dj) : Scalar(0);
-        } else {
-          row(i) = coefficient(i <= nx_ / 2 ? i : i - nx_, dj);
-        }
+        const Index di = offset(i, nx_, mx_);
+        row(i) = padded && (di <= -mx_ || dj <= -my_) ? Scalar(0) : coefficient(di, dj);
       }
       fft_.fwd(spectrum_.col(j).data(), row.data(), nx_);
     }
