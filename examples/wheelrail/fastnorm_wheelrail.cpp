@@ -5,12 +5,17 @@
 //   fastnorm-wheelrail [--y MM] [--yaw DEG] [--load N | --fz N --wheel left|right | --z MM]
 //                      [--roll RAD] [--elements N | --element-size MM] [--solver NAME] [--compare]
 //                      [--wheel-profile FILE] [--rail-profile FILE] [--cant RAD]
+//                      [--radius MM] [--gauge MM] [--young GPA | --shear GPA] [--poisson NU]
+//                      [--rail-young GPA] [--rail-poisson NU]
 //                      [--write-case PREFIX] [--svg PREFIX] [--help]
 //
 // --wheel-profile, --rail-profile: measured or worn profiles (SIMPACK .prw/.prr or plain
 // 'y z' text in mm; docs/wheel-rail.md §1) instead of the closed-form S1002 and UIC60 (MB);
 // --cant: the rails' inclination (default atan(1/40) rad; 0 for a rail file that is already
-// canted, as the Manchester benchmark's UIC60).
+// canted, as the Manchester benchmark's UIC60). --radius, --gauge (the wheelset's taping
+// lines follow, 65 mm wider), --young or --shear and --poisson for both bodies, --rail-young
+// and --rail-poisson for the rail alone: the Manchester benchmark's set-up is
+// --radius 460 --shear 82 --poisson 0.28 (docs/validation.md).
 //
 // Defaults: y = 0, yaw = 0, load = 200 kN on the wheelset (z and roll found), 60 elements
 // across the largest patch, solver norm. --fz with --wheel: CONTACT's single-wheel mode
@@ -24,7 +29,8 @@
 // patch). A first line starting with '#' states the pose and status. --write-case writes
 // PREFIX_<wheel>_<k>.case (h, approach control, solution); --svg writes PREFIX_<wheel>_<k>.svg
 // (pressure map; contact outlines of NORM and of the chosen solver).
-// Exit status: 0 equilibrium found, 1 not found (status on the '#' line), 2 bad input.
+// Exit status: 0 equilibrium found, 1 not found or at flange climb (status on the '#' line;
+// at flange climb the equilibrium's patches are printed when one was found), 2 bad input.
 #include <fastnorm/fastnorm.hpp>
 
 #include <cmath>
@@ -52,6 +58,9 @@ struct Arguments {
   std::string case_prefix, svg_prefix;
   std::string wheel_profile, rail_profile;
   double cant = std::atan(1.0 / 40);
+  double radius_mm = 450, gauge_mm = 1435;
+  double young_gpa = 210, poisson = 0.3, shear_gpa = 0;  // --shear instead of --young
+  double rail_young_gpa = 0, rail_poisson = 0;           // the rail's, when given
 };
 
 fastnorm_example::CommandLine command_line(Arguments& a) {
@@ -77,6 +86,15 @@ fastnorm_example::CommandLine command_line(Arguments& a) {
   line.option("--wheel-profile", a.wheel_profile, "FILE", "measured wheel profile (.prw or 'y z' in mm)");
   line.option("--rail-profile", a.rail_profile, "FILE", "measured rail profile (.prr or 'y z' in mm)");
   line.option("--cant", a.cant, "RAD", "the rails' inclination (0 for a rail file already canted)", within(-0.1, 0.1));
+  line.option("--radius", a.radius_mm, "MM", "nominal rolling radius of the wheels", within(200, 800));
+  line.option("--gauge", a.gauge_mm, "MM", "track gauge; the wheelset's taping lines stay 65 mm wider",
+              within(1000, 1700));
+  line.option("--young", a.young_gpa, "GPA", "Young's modulus of both bodies", within(1, 2000));
+  line.option("--shear", a.shear_gpa, "GPA", "shear modulus of both bodies (E = 2G(1 + nu)), instead of --young", within(0.5, 1000));
+  line.option("--poisson", a.poisson, "", "Poisson's ratio of both bodies", within(0, 0.5));
+  line.option("--rail-young", a.rail_young_gpa, "GPA", "the rail's Young's modulus, if not the wheel's",
+              within(1, 2000));
+  line.option("--rail-poisson", a.rail_poisson, "", "the rail's Poisson's ratio, if not the wheel's", within(0, 0.5));
   line.option("--write-case", a.case_prefix, "PREFIX", "write PREFIX_<wheel>_<k>.case per patch");
   line.option("--svg", a.svg_prefix, "PREFIX", "draw PREFIX_<wheel>_<k>.svg per patch");
   return line;
@@ -95,6 +113,15 @@ void check_mode(const fastnorm_example::CommandLine& line, const Arguments& a) {
   } else if (line.given("--roll") && a.roll != 0) {
     throw UsageError("--roll applies to the single-wheel mode (--fz, --wheel) and to --z only");
   }
+  if (line.given("--young") && line.given("--shear")) throw UsageError("--young and --shear exclude each other");
+}
+
+// Wheel (body 1) and rail (body 2) from --young or --shear, --poisson and the rail's own.
+fastnorm::Material<double> material_of(const fastnorm_example::CommandLine& line, const Arguments& a) {
+  const double wheel_young = line.given("--shear") ? 2 * a.shear_gpa * (1 + a.poisson) : a.young_gpa;
+  const double rail_young = line.given("--rail-young") ? a.rail_young_gpa : wheel_young;
+  const double rail_poisson = line.given("--rail-poisson") ? a.rail_poisson : a.poisson;
+  return {wheel_young * 1e9, a.poisson, rail_young * 1e9, rail_poisson};
 }
 
 wr::ProfileCurve measured_or(const std::string& path, wr::ProfileCurve closed_form) {
@@ -107,11 +134,18 @@ struct Setup {
   wr::Wheelset wheelset;
 };
 
+// The taping lines 65 mm wider than the gauge, as 1500 mm over 1435 mm.
+constexpr double taping_lines_over_gauge_mm = 65;
+
 Setup setup_of(const Arguments& a) {
   wr::TrackLayout layout;
   layout.cant = a.cant;
+  layout.gauge = a.gauge_mm * 1e-3;
+  wr::WheelsetLayout wheels;
+  wheels.nominal_radius = a.radius_mm * 1e-3;
+  wheels.taping_line_half_distance = (a.gauge_mm + taping_lines_over_gauge_mm) / 2 * 1e-3;
   return {wr::Track(measured_or(a.rail_profile, wr::uic60_rail()), layout),
-          wr::Wheelset(measured_or(a.wheel_profile, wr::s1002_wheel()))};
+          wr::Wheelset(measured_or(a.wheel_profile, wr::s1002_wheel()), wheels)};
 }
 
 wr::PatchGridOptions grid_options(const Arguments& a) {
@@ -125,10 +159,12 @@ void report_patches(const Arguments& a, const fastnorm::SolverSpec<double>& solv
                     const fastnorm::Material<double>& material, const std::vector<const wr::PatchContact*>& patches);
 
 // The equilibrium modes: the wheelset under --load, or one wheel under --fz.
-int run_equilibrium(const Arguments& a, const Setup& setup, const fastnorm::SolverSpec<double>& solver) {
+int run_equilibrium(const Arguments& a, const Setup& setup, const fastnorm::SolverSpec<double>& solver,
+                    const fastnorm::Material<double>& material) {
   wr::EquilibriumOptions options;
   options.solver = solver;
   options.grid = grid_options(a);
+  options.material = material;
   const double y = a.y_mm * 1e-3, yaw = a.yaw_deg * M_PI / 180;
   const auto result = a.fz > 0 ? wr::solve_single_wheel(setup.track, setup.wheelset,
                                                          a.wheel == "left" ? wr::Side::left : wr::Side::right, y, yaw,
@@ -139,19 +175,21 @@ int run_equilibrium(const Arguments& a, const Setup& setup, const fastnorm::Solv
               to_string(result.status), solver.name().c_str(), a.y_mm, a.yaw_deg, result.pose.z * 1e3,
               result.pose.roll, result.vertical_force, result.lateral_force, result.iterations,
               result.message.empty() ? "" : " message=", result.message.c_str());
-  if (!result.ok()) return 1;
+  // At flange climb the equilibrium found, if any, is shown, with exit status 1.
   std::vector<const wr::PatchContact*> patches;
   for (const auto& patch : result.patches) patches.push_back(&patch);
-  report_patches(a, solver, fastnorm::Material<double>(options.young_modulus, options.poisson_ratio), patches);
-  return 0;
+  report_patches(a, solver, material, patches);
+  return result.ok() ? 0 : 1;
 }
 
 // --z: contact at the pose as given (grids centred on the contact reference points, as
 // CONTACT's; element sizes from the patches at this pose).
-int run_fixed_pose(const Arguments& a, const Setup& setup, const fastnorm::SolverSpec<double>& solver) {
+int run_fixed_pose(const Arguments& a, const Setup& setup, const fastnorm::SolverSpec<double>& solver,
+                   const fastnorm::Material<double>& material) {
   wr::WheelsetContactOptions options;
   options.solver = solver;
   options.grid = grid_options(a);
+  options.material = material;
   options.snap_to_lattice = false;
   const wr::WheelsetPose pose{a.y_mm * 1e-3, a.z_mm * 1e-3, a.roll, a.yaw_deg * M_PI / 180};
   options.reference_pose = pose;  // --elements across the largest patch at this pose
@@ -159,14 +197,15 @@ int run_fixed_pose(const Arguments& a, const Setup& setup, const fastnorm::Solve
   const auto& result = contact.evaluate(pose);
   std::printf("# status=%s solver=%s y=%.4f mm yaw=%.4f deg z=%.6f mm roll=%.6e rad vertical_force=%.3f N "
               "lateral_force=%.3f N mode=fixed-pose\n",
-              result.ok() ? "converged" : "solver failed", solver.name().c_str(), a.y_mm, a.yaw_deg, a.z_mm, a.roll,
+              !result.ok() ? "solver failed" : result.flange_climb() ? "flange climb" : "converged", solver.name().c_str(),
+              a.y_mm, a.yaw_deg, a.z_mm, a.roll,
               -result.force.z(), result.force.y());
   std::vector<const wr::PatchContact*> patches;
   for (const auto& wheel : result.wheels) {
     for (const auto& patch : wheel.patches) patches.push_back(&patch);
   }
-  report_patches(a, solver, fastnorm::Material<double>(options.young_modulus, options.poisson_ratio), patches);
-  return result.ok() ? 0 : 1;
+  report_patches(a, solver, material, patches);
+  return result.ok() && !result.flange_climb() ? 0 : 1;
 }
 
 void print_patch(const char* wheel, int k, const wr::ContactPatch& patch, const fastnorm::Solution<double>& solution) {
@@ -234,6 +273,8 @@ int main(int argc, char** argv) {
     check_mode(line, arguments);
     const auto solver = fastnorm::SolverSpec<double>::parse(arguments.solver);
     const Setup setup = setup_of(arguments);
-    return line.given("--z") ? run_fixed_pose(arguments, setup, solver) : run_equilibrium(arguments, setup, solver);
+    const auto material = material_of(line, arguments);
+    return line.given("--z") ? run_fixed_pose(arguments, setup, solver, material)
+                             : run_equilibrium(arguments, setup, solver, material);
   });
 }

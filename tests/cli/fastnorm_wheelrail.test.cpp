@@ -79,7 +79,12 @@ TEST_CASE("fastnorm-wheelrail refuses bad input with status 2", "[cli][wheelrail
                                                        {"--fz 1e5", "--wheel"},
                                                        {"--y three", "--y needs a number"},
                                                        {"--solver magic", "unknown solver"},
-                                                       {"--load -5", "load"}};
+                                                       {"--load -5", "load"},
+                                                       {"--radius 50", "--radius"},
+                                                       {"--gauge 3000", "--gauge"},
+                                                       {"--poisson 0.7", "--poisson"},
+                                                       {"--young 210 --shear 82", "exclude"},
+                                                       {"--rail-young 0", "--rail-young"}};
   for (const auto& [arguments, message] : cases) {
     INFO(arguments);
     const auto run = run_wheelrail(arguments);
@@ -158,4 +163,44 @@ TEST_CASE("fastnorm-wheelrail --z gives the contact at a fixed pose", "[cli][whe
   const auto nan = run_wheelrail("--z nan");
   CHECK(nan.status == 2);
   CHECK_THAT(nan.output, Contains("--z needs a number"));
+}
+
+TEST_CASE("fastnorm-wheelrail reports flange climb by status", "[cli][wheelrail]") {
+  // y = 8 mm: the equilibrium has the right wheel on its flange tip (climbed 5.7 mm);
+  // y = 7 mm: no equilibrium, the flange contact lies on the steepest flank.
+  const auto found = run_wheelrail("--y 8 --elements 20");
+  CHECK(found.status == 1);
+  CHECK_THAT(found.output, Contains("# status=flange climb") && Contains("past the steepest flank"));
+  CHECK_THAT(found.output, Contains("wheel=right patch=1"));
+  const auto none = run_wheelrail("--y -7 --elements 20");
+  CHECK(none.status == 1);
+  CHECK_THAT(none.output, Contains("# status=flange climb") && Contains("no equilibrium found"));
+  CHECK_THAT(none.output, !Contains("wheel="));
+  const auto fixed = run_wheelrail("--y 8 --z -5.68 --roll -7.82e-3 --elements 20");
+  CHECK(fixed.status == 1);
+  CHECK_THAT(fixed.output, Contains("# status=flange climb"));
+  CHECK(run_wheelrail("--y 6 --elements 20").status == 0);
+}
+
+TEST_CASE("fastnorm-wheelrail takes the Manchester benchmark's radius and materials", "[cli][wheelrail]") {
+  // A-2.2 at y = 3 mm, right wheel, 10 kN: CONTACT's weighted centre x = −4.9990 mm
+  // (wheelset-geometry.md §6.1); G and E give the same material.
+  const std::string pose = "--fz 1e4 --wheel right --y 3 --yaw 0.41252961 --roll -0.180e-3 --radius 460 --elements 30";
+  const auto by_shear = run_wheelrail(pose + " --shear 82 --poisson 0.28");
+  REQUIRE(by_shear.status == 0);
+  CHECK(field(by_shear.output, "x_track") == Approx(-4.9990).margin(0.3e-3));
+  const auto by_young = run_wheelrail(pose + " --young 209.92 --poisson 0.28");
+  REQUIRE(by_young.status == 0);
+  CHECK(field(by_young.output, "pmax") == Approx(field(by_shear.output, "pmax")).epsilon(1e-6));
+  // A stiffer rail raises the peak pressure; the wheel's radius changes the patch.
+  const auto stiff_rail = run_wheelrail(pose + " --shear 82 --poisson 0.28 --rail-young 400");
+  REQUIRE(stiff_rail.status == 0);
+  CHECK(field(stiff_rail.output, "pmax") > 1.1 * field(by_shear.output, "pmax"));
+  const auto standard_radius = run_wheelrail("--fz 1e4 --wheel right --y 3 --yaw 0.41252961 --roll -0.180e-3 --elements 30");
+  REQUIRE(standard_radius.status == 0);
+  CHECK(field(standard_radius.output, "x_track") != Approx(field(by_shear.output, "x_track")).margin(1e-3));
+  // A wider gauge moves the wheelset's taping lines with it: the same contact, shifted.
+  const auto wide = run_wheelrail(pose + " --shear 82 --poisson 0.28 --gauge 1445");
+  REQUIRE(wide.status == 0);
+  CHECK(field(wide.output, "y_track") == Approx(field(by_shear.output, "y_track") + 5).margin(0.01));
 }

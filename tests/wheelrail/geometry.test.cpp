@@ -165,6 +165,96 @@ TEST_CASE("Our h on CONTACT's grids matches CONTACT's h on every wr_* peer case"
                                                << " mm, max |delta - DELTCP| " << worst_delta << " rad");
 }
 
+namespace {
+
+// A region's reference quantities computed independently of the locus sampling: a
+// quadrature uniform in lateral track position y, each y's locus point found by bisection
+// on y_w, CONTACT's weight (16/15)·pen²·√(2ρ·pen) per unit of y (the constant dropped).
+struct Reference {
+  double x = 0, y = 0, inclination = 0, profile_y = 0;
+};
+
+Reference uniform_in_track_y(const wr::Track& track, const wr::Wheelset& wheelset, wr::Side side,
+                             const wr::WheelsetPose& pose, const wr::ContactRegion& region) {
+  const Eigen::Matrix3d rotation = wr::Wheelset::rotation(pose);
+  auto locus_y = [&](double y_w) { return wheelset.locus(side, y_w, pose, rotation).point.y(); };
+  const double first_w = region.slices.front().wheel.profile_y - 1e-3;
+  const double last_w = region.slices.back().wheel.profile_y + 1e-3;
+  const double low = std::min(locus_y(first_w), locus_y(last_w)), high = std::max(locus_y(first_w), locus_y(last_w));
+  Reference sum;
+  double total = 0;
+  const int points = 20000;
+  for (int i = 0; i <= points; ++i) {
+    const double target = low + (high - low) * i / points;
+    double a = first_w, b = last_w;  // locus y is monotone in y_w across a region
+    const bool rising = locus_y(b) > locus_y(a);
+    for (int step = 0; step < 60; ++step) {
+      const double middle = (a + b) / 2;
+      ((locus_y(middle) < target) == rising ? a : b) = middle;
+    }
+    const auto point = wheelset.locus(side, (a + b) / 2, pose, rotation);
+    const auto rail = track.rail_height(side, point.point.y());
+    if (!rail || point.point.z() <= rail->value) continue;
+    const double penetration = point.point.z() - rail->value;
+    const double weight = penetration * penetration * std::sqrt(2 * point.radius * penetration);
+    sum.x += weight * point.point.x();
+    sum.y += weight * point.point.y();
+    sum.inclination += weight * std::atan(rail->slope);
+    sum.profile_y += weight * point.profile_y;
+    total += weight;
+  }
+  return {sum.x / total, sum.y / total, sum.inclination / total, sum.profile_y / total};
+}
+
+}  // namespace
+
+TEST_CASE("At large yaw the reference point is CONTACT's weighting per lateral track length", "[wheelrail][geometry]") {
+  // Flange-root and flank contact at ±10 and ±20 mrad, where y_track does not follow y_w
+  // in proportion: weighting the profile samples equally put the inclination up to
+  // 0.67 mrad off this quadrature (y = 6.2 mm, yaw 10 mrad). Per lateral length: ≤ 0.001
+  // mrad on the flange root, 0.033 mrad and 0.14 µm on the flank at y = 6.2 mm, yaw 20 mrad,
+  // where a narrow region has few samples of the 0.05 mm profile step.
+  const wr::Track track;
+  const wr::Wheelset wheelset;
+  int regions = 0;
+  double worst_inclination = 0, worst_y = 0, worst_x = 0;
+  for (double yaw : {-20e-3, -10e-3, 10e-3, 20e-3}) {
+    for (double y : {5e-3, 5.5e-3, 6e-3, 6.2e-3, -6e-3}) {
+      wr::WheelsetPose pose = wr::rigid_contact_pose(track, wheelset, y, yaw);
+      pose.z += 0.1e-3;
+      for (wr::Side side : {wr::Side::left, wr::Side::right}) {
+        for (const auto& region : wr::contact_regions(track, wheelset, side, pose)) {
+          const Reference reference = uniform_in_track_y(track, wheelset, side, pose, region);
+          INFO("yaw " << yaw << " rad, y " << y * 1e3 << " mm, " << wr::to_string(side) << ", y_w "
+                      << region.profile_y * 1e3 << " mm");
+          CHECK(std::abs(region.inclination - reference.inclination) <= 5e-5);
+          CHECK(std::abs(region.centre.y() - reference.y) <= 0.3e-6);
+          CHECK(std::abs(region.centre.x() - reference.x) <= 0.3e-6);
+          CHECK(std::abs(region.profile_y - reference.profile_y) <= 0.3e-6);
+          worst_inclination = std::max(worst_inclination, std::abs(region.inclination - reference.inclination));
+          worst_y = std::max(worst_y, std::abs(region.centre.y() - reference.y));
+          worst_x = std::max(worst_x, std::abs(region.centre.x() - reference.x));
+          ++regions;
+        }
+      }
+    }
+  }
+  CHECK(regions == 40);
+  WARN("reference point vs quadrature in track y: inclination " << worst_inclination * 1e3 << " mrad, y "
+                                                                << worst_y * 1e6 << " um, x " << worst_x * 1e6 << " um");
+}
+
+TEST_CASE("S1002's flange climbs from the start of its 70 degree flank", "[wheelrail][geometry]") {
+  // wheelset-geometry.md §6.2: the rigid contact reaches the 70° flank at y_w = −38.43 mm.
+  const wr::Wheelset wheelset;
+  CHECK(wheelset.flange_angle() * 180 / M_PI == Approx(70).margin(1e-3));
+  CHECK(wheelset.flange_climb_point() * 1e3 == Approx(-38.43).margin(0.02));
+  CHECK_FALSE(wheelset.at_flange_climb(0));
+  CHECK_FALSE(wheelset.at_flange_climb(-30e-3));
+  CHECK(wheelset.at_flange_climb(-39e-3));
+  CHECK(wheelset.at_flange_climb(-45e-3));  // the tip arc
+}
+
 TEST_CASE("The contact search samples near contact exactly as the full sampling", "[wheelrail][geometry]") {
   const wr::Track track;
   const wr::Wheelset wheelset;

@@ -58,6 +58,7 @@ struct ContactRegion {
   GapSample deepest;              ///< the sample of largest interpenetration
   Eigen::Vector3d centre = Eigen::Vector3d::Zero();  ///< weighted centre on the rail (track frame, m)
   double inclination = 0;         ///< weighted mean rail inclination δ = atan(dZ/dy) (rad)
+  double profile_y = 0;           ///< weighted mean wheel profile coordinate y_w (m)
   double weight = 0;              ///< total weight (for merging)
 };
 
@@ -290,9 +291,12 @@ inline GapSample smallest_gap(const Track& track, const Wheelset& wheelset, Side
 
 /// The interpenetration regions of `side` at `pose`, merged as CONTACT does: neighbours
 /// whose rail points lie closer than `separation_distance` and whose inclinations differ by
-/// less than `separation_angle` form one patch. The centre and inclination are the
-/// interpenetration-weighted means with CONTACT's weight per slice, ∫(−g(x))² dx over the
-/// overlap of the slice, g(x) = g − x²/(2ρ), i.e. (16/15)·pen²·√(2ρ·pen) (docs/wheel-rail.md §3).
+/// less than `separation_angle` form one patch. The centre, inclination and profile
+/// coordinate are interpenetration-weighted means per unit of lateral track length, as
+/// CONTACT's: a slice weighs ∫(−g(x))² dx over its overlap, g(x) = g − x²/(2ρ), i.e.
+/// (16/15)·pen²·√(2ρ·pen), times the lateral track length it stands for (half the distance
+/// in y_track between its neighbours), which at large yaw is not proportional to the
+/// profile step (docs/wheel-rail.md §4, item 4).
 ///
 /// Into `regions`, by increasing y_w, from the samples of `sampler` (which continues from
 /// its previous call). Both keep their storage from call to call (with the regions'
@@ -316,18 +320,29 @@ inline void contact_regions(const Track& track, const Wheelset& wheelset, Side s
   }
   for (std::size_t r = 0; r < count; ++r) {
     auto& region = regions[r];
+    const auto& slices = region.slices;
     Eigen::Vector3d weighted = Eigen::Vector3d::Zero();
-    double inclination = 0, total = 0;
-    for (const auto& slice : region.slices) {
+    double inclination = 0, profile_y = 0, total = 0;
+    for (std::size_t k = 0; k < slices.size(); ++k) {
+      const GapSample& slice = slices[k];
       const double penetration = -slice.gap;
-      const double weight = penetration * penetration * std::sqrt(2 * slice.wheel.radius * penetration);
+      // The lateral track length of the slice (trapezoid rule; a lone slice stands for the
+      // profile step), never zero, so that a fold of the locus cannot empty a region.
+      const double y = slice.wheel.point.y();
+      double width = 0;
+      if (k > 0) width += std::abs(y - slices[k - 1].wheel.point.y()) / 2;
+      if (k + 1 < slices.size()) width += std::abs(slices[k + 1].wheel.point.y() - y) / 2;
+      width = std::max(width, slices.size() > 1 ? 1e-3 * options.step : options.step);
+      const double weight = width * penetration * penetration * std::sqrt(2 * slice.wheel.radius * penetration);
       weighted += weight * Eigen::Vector3d(slice.wheel.point.x(), slice.wheel.point.y(), slice.rail_z);
       inclination += weight * std::atan(slice.rail_slope);
+      profile_y += weight * slice.wheel.profile_y;
       total += weight;
     }
     region.weight = total;
     region.centre = weighted / total;
     region.inclination = inclination / total;
+    region.profile_y = profile_y / total;
   }
   // Merge neighbours (ordered by y_w, so by rail position) in place: regions[0, kept) are
   // the merged ones.
@@ -344,6 +359,7 @@ inline void contact_regions(const Track& track, const Wheelset& wheelset, Side s
         const double total = last.weight + region.weight;
         last.centre = (last.weight * last.centre + region.weight * region.centre) / total;
         last.inclination = (last.weight * last.inclination + region.weight * region.inclination) / total;
+        last.profile_y = (last.weight * last.profile_y + region.weight * region.profile_y) / total;
         last.weight = total;
         if (region.deepest.gap < last.deepest.gap) last.deepest = region.deepest;
         last.slices.insert(last.slices.end(), region.slices.begin(), region.slices.end());

@@ -30,8 +30,8 @@ struct EquilibriumOptions {
   /// `elements` gives across the largest patch near the equilibrium (docs/wheel-rail.md §5).
   PatchGridOptions grid;
   SearchOptions search;            ///< contact search and patch merging
-  double young_modulus = 2.1e11;   ///< both bodies (Pa)
-  double poisson_ratio = 0.3;      ///< both bodies
+  /// Elastic constants of wheel (body 1) and rail (body 2); steel for both by default.
+  Material<double> material{2.1e11, 0.3};
   double force_tolerance = 1e-6;   ///< |vertical residual| ≤ tol·load and |roll moment| ≤ tol·load·d
   int max_iterations = 40;         ///< contact evaluations in all (each solves every loaded patch once)
   /// First guess of a wheel's elastic approach at 100 kN (m), scaled as Hertz (N^(2/3)).
@@ -46,7 +46,6 @@ struct EquilibriumOptions {
     solver.validate();
     grid.validate();
     search.validate();
-    Material<double>(young_modulus, poisson_ratio);  // checks both
     using fastnorm::detail::check_positive;
     check_positive(force_tolerance, "EquilibriumOptions: force_tolerance");
     check_positive(approach_at_100kN, "EquilibriumOptions: approach_at_100kN (m)");
@@ -63,6 +62,14 @@ enum class EquilibriumStatus {
   lost_contact,   ///< a wheel that must carry load has no contact with its rail
   not_converged,  ///< the step limit was reached
   solver_failed,  ///< a patch solve did not give a usable answer
+  /// A wheel is at flange climb (docs/wheel-rail.md §5): at the equilibrium found, a
+  /// patch's reference point lies on the steepest flank of its flange or beyond it
+  /// (Wheelset::at_flange_climb; pose and patches are that equilibrium's); or no
+  /// equilibrium was found and the search met such a contact, or, with two wheels, a
+  /// flange contact so steep that its line of action passes the wheelset centre on the far
+  /// side and lifts the other wheel (no patches then; the pose is the last one accepted).
+  /// The message says which.
+  flange_climb,
 };
 
 inline const char* to_string(EquilibriumStatus status) {
@@ -71,6 +78,7 @@ inline const char* to_string(EquilibriumStatus status) {
     case EquilibriumStatus::lost_contact: return "lost contact";
     case EquilibriumStatus::not_converged: return "not converged";
     case EquilibriumStatus::solver_failed: return "solver failed";
+    case EquilibriumStatus::flange_climb: return "flange climb";
   }
   return "unknown";
 }
@@ -99,6 +107,11 @@ namespace detail {
 /// within 5e-4 of NORM's.
 inline constexpr double sizing_tolerance = 1e-3;
 
+// A first guess of the elastic approach of a wheel: approach_at_100kN, scaled as Hertz (N^(2/3)).
+inline double approach_guess(double wheel_load, const EquilibriumOptions& options) {
+  return options.approach_at_100kN * std::cbrt(std::pow(wheel_load / 1e5, 2));
+}
+
 /// The equilibrium search (docs/wheel-rail.md §5) for the wheels in `sides` carrying `load`;
 /// roll is an unknown only when both wheels are loaded. Newton on (z, roll) with a
 /// WheelsetContact evaluated at every step: exact h at each pose, and the Jacobian from
@@ -124,16 +137,27 @@ class EquilibriumSearch {
       const auto sizes = element_sizes_at(pose);
       if (!sizes) return finish(EquilibriumStatus::lost_contact, pose);
       model.emplace(track_, wheelset_, contact_options(*sizes, solver));
-      switch (newton(*model, pose, tolerance)) {
-        case Step::balanced: break;
+      const Step outcome = newton(*model, pose, tolerance);
+      if (outcome == Step::balanced) continue;
+      if (!climb_.empty()) {
+        result_.message = climb_ + "; no equilibrium found";
+        return finish(EquilibriumStatus::flange_climb, pose);
+      }
+      switch (outcome) {
         case Step::lost_contact: return finish(EquilibriumStatus::lost_contact, pose);
         case Step::solver_failed: return finish(EquilibriumStatus::solver_failed, pose);
-        case Step::out_of_steps:
+        default:
           result_.message = "no equilibrium within " + std::to_string(options_.max_iterations) + " steps";
           return finish(EquilibriumStatus::not_converged, pose);
       }
     }
     store();  // the last stage's patches, which the model holds
+    for (const PatchContact& patch : result_.patches) {
+      if (wheelset_.at_flange_climb(patch.profile_y)) {
+        result_.message = on_flange(patch);
+        return finish(EquilibriumStatus::flange_climb, pose);
+      }
+    }
     return finish(EquilibriumStatus::converged, pose);
   }
 
@@ -161,33 +185,117 @@ class EquilibriumSearch {
     contact.grid = options_.grid;
     std::tie(contact.grid.element_length, contact.grid.element_width) = sizes;
     contact.search = options_.search;
-    contact.young_modulus = options_.young_modulus;
-    contact.poisson_ratio = options_.poisson_ratio;
+    contact.material = options_.material;
     contact.snap_to_lattice = false;     // grids centred on the contact reference points, as CONTACT's
     contact.reduced_warm_start = false;  // a reduced answer that does not depend on the path to it
     return contact;
   }
 
   /// Newton steps on (z, roll) until the residuals at an evaluated pose are within
-  /// `tolerance`; `pose` ends at the last evaluated pose.
+  /// `tolerance`; `pose` ends at the last accepted pose. Damped (docs/wheel-rail.md §5): a
+  /// step moves no point of the wheelset by more than a trust length and, unless shorter
+  /// than unchecked_length, is accepted only when it lowers the scaled residual. The first Jacobian comes from the patches'
+  /// stiffnesses, which see the approach but not the contact point running along a curved
+  /// profile: at the flange root a full step can land millimetres off. So a rejected step
+  /// (more residual, a loaded wheel without contact, or a failed solve at the trial pose)
+  /// returns to the accepted pose with a quarter of the length and from then on takes the
+  /// Jacobian from finite differences at each accepted pose.
   Step newton(WheelsetContact<Solver>& model, WheelsetPose& pose, double tolerance) {
-    while (result_.iterations < options_.max_iterations) {
-      ++result_.iterations;
-      if (const auto failed = evaluate(model, pose)) return *failed;
-      if (balanced(residual_, tolerance)) return Step::balanced;
-      if (!every_wheel_carries()) return Step::lost_contact;
-      const Eigen::Matrix2d jacobian = newton_jacobian();
-      if (jacobian(0, 0) <= 0) {  // nothing pressed yet: press on by the deepest overlap
+    if (result_.iterations >= options_.max_iterations) return Step::out_of_steps;
+    ++result_.iterations;
+    if (const auto failed = evaluate(model, pose)) return *failed;
+    if (!every_wheel_carries()) return Step::lost_contact;
+    double trust = initial_trust();
+    bool differences = false;
+    while (!balanced(residual_, tolerance)) {
+      const Eigen::Vector2d residual = residual_;  // at the accepted pose
+      Eigen::Matrix2d jacobian = newton_jacobian();
+      if (differences) {
+        if (const auto failed = difference_jacobian(model, pose, residual, jacobian)) return *failed;
+      } else if (jacobian(0, 0) <= 0) {  // nothing pressed yet: press on by the deepest overlap
+        if (result_.iterations >= options_.max_iterations) return Step::out_of_steps;
         double deepest = 0;
         for (const PatchContact* patch : patches_) deepest = std::max(deepest, patch->approach);
         pose.z += deepest + 1e-6;
+        ++result_.iterations;
+        if (const auto failed = evaluate(model, pose)) return *failed;
         continue;
       }
-      const Eigen::Vector2d motion = jacobian.partialPivLu().solve(residual_);
-      pose.z -= motion(0);
-      pose.roll -= motion(1);
+      if (result_.iterations >= options_.max_iterations) return Step::out_of_steps;
+      Eigen::Vector2d motion = -jacobian.partialPivLu().solve(residual);
+      const double length = std::max(std::abs(motion(0)), std::abs(motion(1)) * half_gauge());
+      if (!(length > 0)) return Step::out_of_steps;
+      if (length > trust) motion *= trust / length;
+      WheelsetPose trial = pose;
+      trial.z += motion(0);
+      trial.roll += motion(1);
+      ++result_.iterations;
+      const auto failed = evaluate(model, trial);
+      Step rejection = Step::out_of_steps;  // more residual
+      if (failed) {
+        rejection = *failed;
+      } else if (!every_wheel_carries()) {
+        rejection = Step::lost_contact;
+      } else if (length <= unchecked_length || scaled_norm(residual_) < scaled_norm(residual)) {
+        pose = trial;
+        trust = std::max(trust, 2 * std::min(length, trust));
+        result_.message.clear();
+        continue;
+      }
+      trust = std::min(length, trust) / 4;
+      if (trust < smallest_trust) return rejection;
+      differences = true;
+      residual_ = residual;  // the accepted pose's; the differences evaluate around it
     }
-    return Step::out_of_steps;
+    result_.message.clear();
+    return Step::balanced;
+  }
+
+  /// ∂R/∂(z, roll) at `pose` (whose residual is `residual`) by forward differences, two
+  /// evaluations: a drop of difference_length, and a roll lowering the less loaded wheel
+  /// by as much at the taping line, so that neither loses contact.
+  std::optional<Step> difference_jacobian(WheelsetContact<Solver>& model, const WheelsetPose& pose,
+                                          const Eigen::Vector2d& residual, Eigen::Matrix2d& jacobian) {
+    const double roll_sign = with_roll() && load_on(Side::right) < load_on(Side::left) ? 1.0 : -1.0;
+    const Eigen::Vector2d moves(difference_length, roll_sign * difference_length / half_gauge());
+    for (int column = 0; column < (with_roll() ? 2 : 1); ++column) {
+      if (result_.iterations >= options_.max_iterations) return Step::out_of_steps;
+      WheelsetPose moved = pose;
+      (column == 0 ? moved.z : moved.roll) += moves(column);
+      ++result_.iterations;
+      if (const auto failed = evaluate(model, moved)) return failed;
+      jacobian.col(column) = (residual_ - residual) / moves(column);
+    }
+    return std::nullopt;
+  }
+
+  /// The finite-difference step (m).
+  static constexpr double difference_length = 1e-6;
+
+  /// Σ Fn of the patches of `side` at the last evaluation (N).
+  double load_on(Side side) const {
+    double carried = 0;
+    for (const PatchContact* patch : patches_) {
+      if (patch->patch.frame.side == side) carried += patch->normal_force;
+    }
+    return carried;
+  }
+
+  /// The first trust length (m): four times the first guess of a wheel's approach.
+  double initial_trust() const { return 4 * approach_guess(load_ / static_cast<double>(sides_.size()), options_); }
+  /// Below this trust length (m) the search gives up.
+  static constexpr double smallest_trust = 1e-9;
+  /// Steps up to this length (m) are taken whatever the residual there: within it the
+  /// profiles' curvature hardly moves the contact, and a reduced solver's force, which
+  /// jumps as elements join its contact set (up to about 5e-4 of the load at 20 elements),
+  /// would otherwise stop a search that full Newton steps finish.
+  static constexpr double unchecked_length = 1e-6;
+
+  double half_gauge() const { return wheelset_.layout().taping_line_half_distance; }
+
+  /// |R| scaled as the tolerance: vertical by the load, roll moment by load × d.
+  double scaled_norm(const Eigen::Vector2d& residual) const {
+    return std::hypot(residual(0) / load_, residual(1) / (load_ * half_gauge()));
   }
 
   /// The loaded wheels' patches at `pose` and the residuals; a failure step, if any.
@@ -216,6 +324,13 @@ class EquilibriumSearch {
       stiffness_(k) = patch.stiffness;
       cosine_(k) = std::cos(frame.inclination);
       lever_(k) = arm.y() * std::cos(frame.inclination) + arm.z() * std::sin(frame.inclination);
+      if (wheelset_.at_flange_climb(patch.profile_y)) {
+        climb_ = on_flange(patch);
+      } else if (with_roll() && force_(k) > 0 && lever_(k) * side_sign(frame.side) < 0) {
+        climb_ = std::string("the ") + to_string(frame.side) + " wheel's flange contact (contact angle " +
+                 fastnorm::detail::to_text(patch.contact_angle) +
+                 " rad) has its line of action beyond the wheelset centre and lifts the other wheel";
+      }
     }
     residual_ = {force_.dot(cosine_) - load_, with_roll() ? -force_.dot(lever_) : 0.0};
     return std::nullopt;
@@ -233,18 +348,14 @@ class EquilibriumSearch {
 
   bool balanced(const Eigen::Vector2d& residual, double tolerance) const {
     return std::abs(residual(0)) <= tolerance * load_ &&
-           std::abs(residual(1)) <= tolerance * load_ * wheelset_.layout().taping_line_half_distance;
+           std::abs(residual(1)) <= tolerance * load_ * half_gauge();
   }
 
   /// With two loaded wheels each must carry force, or the Newton step is undetermined.
   bool every_wheel_carries() {
     if (!with_roll()) return true;
     for (Side side : sides_) {
-      double carried = 0;
-      for (const PatchContact* patch : patches_) {
-        if (patch->patch.frame.side == side) carried += patch->normal_force;
-      }
-      if (carried <= 0) {
+      if (load_on(side) <= 0) {
         result_.message = std::string("the ") + to_string(side) + " wheel carries no load";
         return false;
       }
@@ -265,6 +376,12 @@ class EquilibriumSearch {
 
   bool with_roll() const { return sides_.size() == 2; }
 
+  std::string on_flange(const PatchContact& patch) const {
+    return std::string("the ") + to_string(patch.patch.frame.side) + " wheel's contact lies at y_w = " +
+           fastnorm::detail::to_text(patch.profile_y * 1e3) + " mm, on or past the steepest flank of its flange (from " +
+           fastnorm::detail::to_text(wheelset_.flange_climb_point() * 1e3) + " mm): flange climb";
+  }
+
   Equilibrium finish(EquilibriumStatus status, const WheelsetPose& pose) {
     result_.status = status;
     result_.pose = pose;
@@ -277,6 +394,7 @@ class EquilibriumSearch {
   double load_;
   const EquilibriumOptions& options_;
   Equilibrium result_;
+  std::string climb_;  // what the search last saw of flange climb (empty: nothing)
   // The last evaluation: the loaded wheels' patches (in the model's result), their forces,
   // stiffnesses dFn/dδ, cos δ and lever arms L, and the residuals (vertical, roll).
   std::vector<const PatchContact*> patches_;
@@ -287,11 +405,6 @@ class EquilibriumSearch {
 inline void check_load(double load, const char* load_name) {
   FASTNORM_CHECK(std::isfinite(load) && load > 0,
                  fastnorm::detail::describe(std::string("equilibrium: ") + load_name + " must be positive (N)", load));
-}
-
-// A first guess of the elastic approach of a wheel: approach_at_100kN, scaled as Hertz (N^(2/3)).
-inline double approach_guess(double wheel_load, const EquilibriumOptions& options) {
-  return options.approach_at_100kN * std::cbrt(std::pow(wheel_load / 1e5, 2));
 }
 
 }  // namespace detail

@@ -5,6 +5,7 @@
 #include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <optional>
 #include <string>
 
@@ -81,10 +82,24 @@ class Wheelset {
                                               layout.taping_line_half_distance));
     FASTNORM_CHECK(static_cast<bool>(wheel_.evaluate) && wheel_.y_min < wheel_.y_max,
                    "Wheelset: the wheel profile needs a function and y_min < y_max");
+    find_flange_climb_point();
   }
 
   const WheelsetLayout& layout() const { return layout_; }
   const ProfileCurve& profile() const { return wheel_; }
+
+  /// The steepest angle of the wheel profile, atan|dF/dy_w| (rad): the flange angle.
+  double flange_angle() const { return flange_angle_; }
+  /// Where the flange reaches its steepest angle, coming from the tread (y_w, m): the first
+  /// profile point within flange_angle_tolerance of flange_angle(). A contact on or beyond it
+  /// (towards the flange tip) is at flange climb: by Nadal's criterion without friction the
+  /// lateral force a wheel can take is Q·tan δ, largest there, so more lateral push lifts
+  /// the wheel (docs/wheel-rail.md §5).
+  double flange_climb_point() const { return climb_point_; }
+  /// Whether profile coordinate y_w lies on the steepest flank or beyond it, to the tip.
+  bool at_flange_climb(double profile_y) const { return (profile_y - climb_point_) * tip_direction_ >= 0; }
+  /// How close (rad) to the steepest angle the climb point lies.
+  static constexpr double flange_angle_tolerance = 1.75e-3;
 
   /// The wheelset centre C = (0, y, z − r0) in the track frame.
   Vector3 centre(const WheelsetPose& pose) const { return {0, pose.y, pose.z - layout_.nominal_radius}; }
@@ -127,8 +142,35 @@ class Wheelset {
   }
 
  private:
+  /// flange_angle_, climb_point_ and tip_direction_ from scans of the profile every 10 µm:
+  /// the flange tip is where the radius is largest; the flank is the steepest part between
+  /// the tip and the taping line (y_w = 0), and the climb point its end on the tread side.
+  void find_flange_climb_point() {
+    const double step = 1e-5;
+    double tip_y = wheel_.y_min, largest_radius = -std::numeric_limits<double>::infinity();
+    for (double y = wheel_.y_min; y <= wheel_.y_max; y += step) {
+      const double radius = wheel_.evaluate(y).value;
+      if (radius > largest_radius) largest_radius = radius, tip_y = y;
+    }
+    tip_direction_ = tip_y < 0 ? -1.0 : 1.0;
+    auto angle_at = [&](double y) { return std::atan(std::abs(wheel_.evaluate(y).slope)); };
+    const double to_tread = -tip_direction_ * step;
+    const auto on_face = [&](double y) { return wheel_.contains(y) && (y - tip_y) * to_tread <= std::abs(tip_y); };
+    double steepest_y = tip_y;
+    flange_angle_ = 0;
+    for (double y = tip_y; on_face(y); y += to_tread) {
+      if (angle_at(y) > flange_angle_) flange_angle_ = angle_at(y), steepest_y = y;
+    }
+    climb_point_ = steepest_y;
+    for (double y = steepest_y + to_tread; on_face(y) && angle_at(y) >= flange_angle_ - flange_angle_tolerance;
+         y += to_tread) {
+      climb_point_ = y;
+    }
+  }
+
   ProfileCurve wheel_;
   WheelsetLayout layout_;
+  double flange_angle_ = 0, climb_point_ = 0, tip_direction_ = -1;
 };
 
 }  // namespace fastnorm::wheelrail

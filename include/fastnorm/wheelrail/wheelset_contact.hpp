@@ -33,8 +33,8 @@ struct WheelsetContactOptions {
   /// that put `elements` across the largest patch at `reference_pose`.
   PatchGridOptions grid;
   SearchOptions search;           ///< contact search and patch merging
-  double young_modulus = 2.1e11;  ///< both bodies (Pa)
-  double poisson_ratio = 0.3;     ///< both bodies
+  /// Elastic constants of wheel (body 1) and rail (body 2); steel for both by default.
+  Material<double> material{2.1e11, 0.3};
   /// Where the element sizes are chosen when not given; by default the rigid two-wheel
   /// contact at y = 0, yaw = 0 lowered by `reference_approach`.
   std::optional<WheelsetPose> reference_pose;
@@ -69,7 +69,6 @@ struct WheelsetContactOptions {
     solver.validate();
     grid.validate();
     search.validate();
-    Material<double>(young_modulus, poisson_ratio);  // checks both
     fastnorm::detail::check_positive(reference_approach, "WheelsetContactOptions: reference_approach (m)");
     FASTNORM_CHECK((grid.element_length > 0) == (grid.element_width > 0),
                    "WheelsetContactOptions: give both grid.element_length and grid.element_width, or neither");
@@ -100,6 +99,7 @@ struct PatchContact {
   ContactPatch patch{{}, Grid<double>(1, 1, 1, 1), {}};  ///< frame, grid and undeformed distance h (approach 0)
   Solution<double> solution;    ///< pressures on patch.grid (Pa), contact set, status
   Eigen::Vector3d centre = Eigen::Vector3d::Zero();  ///< the contact reference point (weighted centre on the rail)
+  double profile_y = 0;         ///< the wheel profile coordinate y_w of the reference point, weighted alike (m)
   Eigen::Vector3d pressure_centre = Eigen::Vector3d::Zero();  ///< centroid of the pressure in the tangent plane
   double normal_force = 0;      ///< Fn (N)
   /// The normal force on the wheel, −Fn·n (N; n into the rail, PatchFrame::normal).
@@ -133,6 +133,9 @@ struct WheelContact {
   Eigen::Vector3d moment = Eigen::Vector3d::Zero();  ///< Σ patch moments about the wheelset centre (N·m)
   double normal_force = 0;            ///< Σ Fn (N)
   int vanished = 0;                   ///< previous patches with no successor (contact lost there)
+  /// A patch's reference point lies on the steepest flank of the flange or beyond it
+  /// (Wheelset::at_flange_climb): the wheel is at flange climb.
+  bool flange_climb = false;
   StageTimes times;
 
   bool ok() const {
@@ -150,6 +153,8 @@ struct WheelsetContactResult {
   const WheelContact& wheel(Side side) const { return wheels[side == Side::right ? 1 : 0]; }
   /// Every patch solved with a usable answer.
   bool ok() const { return wheels[0].ok() && wheels[1].ok(); }
+  /// A wheel at flange climb.
+  bool flange_climb() const { return wheels[0].flange_climb || wheels[1].flange_climb; }
 };
 
 namespace detail {
@@ -219,8 +224,7 @@ class WheelsetContact {
   /// @throws fastnorm::invalid_argument for invalid options, or a reference pose with no
   ///         contact on a wheel
   WheelsetContact(const Track& track, const Wheelset& wheelset, WheelsetContactOptions options = {})
-      : track_(track), wheelset_(wheelset), options_(std::move(options)),
-        material_(options_.young_modulus, options_.poisson_ratio) {
+      : track_(track), wheelset_(wheelset), options_(std::move(options)) {
     options_.validate();
     choose_element_sizes();
   }
@@ -305,8 +309,11 @@ class WheelsetContact {
     std::vector<State>& next = next_states_[w];  // storage of the call before the last
     next.resize(regions.size());
     const auto& successors = match(regions, previous, wheel);
+    wheel.flange_climb = false;
     for (std::size_t k = 0; k < regions.size(); ++k) {
       wheel.patches[k].centre = regions[k].centre;
+      wheel.patches[k].profile_y = regions[k].profile_y;
+      wheel.flange_climb = wheel.flange_climb || wheelset_.at_flange_climb(regions[k].profile_y);
       place_grid(regions[k], successors[k], previous, next[k]);
     }
     wheel.times.search = detail::seconds_since(clock);
@@ -497,7 +504,7 @@ class WheelsetContact {
       const auto& known = solvers_[s].solver.grid();
       if (known.mx() == grid.mx() && known.my() == grid.my()) return s;
     }
-    solvers_.push_back({Solver(options_.solver, grid, material_), {}});
+    solvers_.push_back({Solver(options_.solver, grid, options_.material), {}});
     return solvers_.size() - 1;
   }
 
@@ -529,7 +536,6 @@ class WheelsetContact {
   const Track& track_;
   const Wheelset& wheelset_;
   WheelsetContactOptions options_;
-  Material<double> material_;
   double dx_ = 0, ds_ = 0;
   /// A solver and the workspaces with its storage that no patch holds at the moment.
   struct SolverSlot {
