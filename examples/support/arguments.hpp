@@ -19,6 +19,7 @@
 #include <functional>
 #include <iostream>
 #include <limits>
+#include <new>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -270,7 +271,7 @@ class CommandLine {
 /// Parses, then runs `body` (returning the exit status). A bad command line, and any error
 /// `body` throws (the library's invalid_argument for a bad file, solver name or value; a
 /// file that cannot be written), print one message naming the culprit and give status 2;
-/// --help gives 0.
+/// running out of memory says so; --help gives 0.
 template <typename Body>
 int run_tool(CommandLine& line, int argc, char** argv, Body&& body) {
   try {
@@ -279,6 +280,8 @@ int run_tool(CommandLine& line, int argc, char** argv, Body&& body) {
   } catch (const UsageError& error) {
     std::cerr << line.program() << ": " << error.what() << '\n'
               << line.usage() << "(" << line.program() << " --help lists the options)\n";
+  } catch (const std::bad_alloc&) {
+    std::cerr << line.program() << ": out of memory: the problem is too large for this machine\n";
   } catch (const std::exception& error) {
     std::cerr << line.program() << ": " << error.what() << '\n';
   }

@@ -77,11 +77,15 @@ int run(const Arguments& arguments) {
     std::cout << "case " << problem.name << ": solver " << solver.name() << ", "
               << (problem.loading.control == fastnorm::Control::force ? "force" : "approach")
               << " control, status " << fastnorm::to_string(solution.status) << " (" << solution.message << ")\n";
+    if (solution.at_edge) {
+      std::cout << "warning: the contact reaches the edge of the grid; the answer is that of a body cut off "
+                   "there (enlarge the grid)\n";
+    }
   }
   std::cout.precision(10);
   std::cout << "fn=" << solution.normal_force << " approach=" << solution.approach
             << " ncontact=" << solution.contact_count() << " iterations=" << solution.iterations
-            << " solve_s=" << seconds;
+            << " at_edge=" << solution.at_edge << " solve_s=" << seconds;
   if (problem.result) {
     const auto& reference = *problem.result;
     std::cout << " ref_fn=" << reference.normal_force

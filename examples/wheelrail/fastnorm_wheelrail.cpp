@@ -23,10 +23,11 @@
 // (y, z, roll, yaw) as given, no equilibrium (WheelsetContact, docs/wheel-rail.md §9).
 // --element-size: square elements of that size instead of --elements. Each patch line:
 //   wheel=<left|right> patch=<k> fn=<N> ncontact=<n> pmax=<Pa> x_track=<mm> y_track=<mm>
-//   contact_angle=<rad> approach=<m> stiffness=<N/m>
+//   contact_angle=<rad> approach=<m> stiffness=<N/m> at_edge=<0|1>
 // (contact reference point in the track frame; approach = the patch's rigid
-// interpenetration; stiffness = dFn/dδ at the final contact set), plus rel_fn_err_vs_norm=<x> with --compare (full NORM on the same
-// patch). A first line starting with '#' states the pose and status. --write-case writes
+// interpenetration; stiffness = dFn/dδ at the final contact set; at_edge = 1 when contact
+// reaches the grid's boundary), plus rel_fn_err_vs_norm=<x> with --compare (full NORM on the
+// same patch). A first line starting with '#' states the pose and status. --write-case writes
 // PREFIX_<wheel>_<k>.case (h, approach control, solution); --svg writes PREFIX_<wheel>_<k>.svg
 // (pressure map; contact outlines of NORM and of the chosen solver).
 // Exit status: 0 equilibrium found, 1 not found or at flange climb (status on the '#' line;
@@ -71,14 +72,16 @@ fastnorm_example::CommandLine command_line(Arguments& a) {
                    "An S1002 wheelset on UIC60 rails (or measured profiles) in static equilibrium; one line per contact patch.");
   line.option("--y", a.y_mm, "MM", "lateral shift of the wheelset", strictly_within(-y_limit, y_limit));
   line.option("--yaw", a.yaw_deg, "DEG", "yaw angle of the wheelset", strictly_within(-yaw_limit, yaw_limit));
-  line.option("--load", a.load, "N", "vertical load on the wheelset (z and roll found)", positive());
-  line.option("--fz", a.fz, "N", "single-wheel mode: vertical force on the wheel --wheel", positive());
+  const fastnorm_example::Range load_range{0, wr::detail::max_load, true, false};
+  line.option("--load", a.load, "N", "vertical load on the wheelset (z and roll found)", load_range);
+  line.option("--fz", a.fz, "N", "single-wheel mode: vertical force on the wheel --wheel", load_range);
   line.choice("--wheel", a.wheel, {"left", "right"}, "single-wheel mode: the loaded wheel");
   line.option("--z", a.z_mm, "MM", "contact at this vertical position of the wheelset (down), no equilibrium",
               strictly_within(-wr::PoseLimits::vertical * 1e3, wr::PoseLimits::vertical * 1e3));
   line.option("--roll", a.roll, "RAD", "the fixed roll angle (single-wheel mode and --z)",
               strictly_within(-wr::PoseLimits::roll, wr::PoseLimits::roll));
-  line.option("--elements", a.elements, "N", "elements across the largest patch, each direction", at_least(4));
+  line.option("--elements", a.elements, "N", "elements across the largest patch, each direction",
+              within(4, static_cast<double>(wr::PatchGridOptions::max_elements)));
   line.option("--element-size", a.element_size_mm, "MM", "square elements of this size instead of --elements",
               positive());
   line.option("--solver", a.solver, "NAME", std::string("the patch solver: ") + fastnorm::SolverSpec<double>::grammar);
@@ -239,7 +242,7 @@ void report_patches(const Arguments& a, const fastnorm::SolverSpec<double>& solv
     const int k = ++number_on_side[patch.frame.side == wr::Side::right];
     const char* wheel = wr::to_string(patch.frame.side);
     print_patch(wheel, k, patch, solution);
-    std::printf(" stiffness=%.6e", contact->stiffness);
+    std::printf(" stiffness=%.6e at_edge=%d", contact->stiffness, solution.at_edge ? 1 : 0);
     // Full NORM on the same patch, for --compare and the outline in --svg.
     fastnorm::Solution<double> norm = solution;
     if (!solved_by_norm && (a.compare || !a.svg_prefix.empty())) {

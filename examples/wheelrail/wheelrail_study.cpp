@@ -80,7 +80,8 @@ fastnorm_example::CommandLine command_line(Arguments& a) {
                                    "The paper's study: S1002 on UIC60, equilibria with full NORM, the same patches "
                                    "with the elliptic and polynomial bases; table, CSV and SVG figures.");
   line.option("--out", a.out_dir, "DIR", "folder for study.csv and the figures");
-  line.option("--elements", a.elements, "N", "elements across the largest patch", fastnorm_example::at_least(4));
+  line.option("--elements", a.elements, "N", "elements across the largest patch",
+              fastnorm_example::within(4, static_cast<double>(fastnorm::wheelrail::PatchGridOptions::max_elements)));
   line.flag("--quick", a.quick, "y = 0 and 4 mm only, at most 30 elements (the smoke test)");
   return line;
 }

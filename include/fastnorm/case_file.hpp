@@ -5,6 +5,7 @@
 
 #include <Eigen/Core>
 #include <cctype>
+#include <cerrno>
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
@@ -18,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "fastnorm/detail/memory_check.hpp"
 #include "fastnorm/error.hpp"
 #include "fastnorm/grid.hpp"
 #include "fastnorm/material.hpp"
@@ -28,9 +30,10 @@ namespace fastnorm {
 /// A `.case` file that does not follow the format; `line()` is 1-based (0: no line).
 class case_format_error : public invalid_argument {
  public:
+  /// `what` may be another fastnorm error's message: its "fastnorm: " is not repeated.
   case_format_error(const std::string& source, int line, const std::string& what)
-      : invalid_argument("fastnorm: " + source + (line > 0 ? ":" + std::to_string(line) : "") +
-                         ": " + what),
+      : invalid_argument("fastnorm: " + source + (line > 0 ? ":" + std::to_string(line) : "") + ": " +
+                         (what.rfind("fastnorm: ", 0) == 0 ? what.substr(10) : what)),
         line_(line) {}
   int line() const { return line_; }
 
@@ -98,21 +101,50 @@ class CaseLines {
   int number_ = 0;
 };
 
+/// A decimal number as the format writes it: [+-] digits [. digits] [e [+-] digits], with
+/// digits on at least one side of the point; no hexadecimal, inf or nan (strtold's extras).
+inline bool is_decimal(const std::string& word) {
+  std::size_t k = 0;
+  auto digits = [&] {
+    const std::size_t start = k;
+    while (k < word.size() && std::isdigit(static_cast<unsigned char>(word[k]))) ++k;
+    return k - start;
+  };
+  if (k < word.size() && (word[k] == '+' || word[k] == '-')) ++k;
+  std::size_t mantissa = digits();
+  if (k < word.size() && word[k] == '.') {
+    ++k;
+    mantissa += digits();
+  }
+  if (mantissa == 0) return false;
+  if (k < word.size() && (word[k] == 'e' || word[k] == 'E')) {
+    ++k;
+    if (k < word.size() && (word[k] == '+' || word[k] == '-')) ++k;
+    if (digits() == 0) return false;
+  }
+  return k == word.size();
+}
+
 template <typename Scalar>
 Scalar parse_number(const CaseLines& lines, const std::string& word, const std::string& what) {
-  const char* begin = word.c_str();
-  char* end = nullptr;
-  const long double value = std::strtold(begin, &end);
-  if (end == begin || *end != '\0') lines.fail("malformed number '" + word + "' for " + what);
-  if (!std::isfinite(value)) lines.fail("non-finite number '" + word + "' for " + what);
-  return static_cast<Scalar>(value);
+  if (!is_decimal(word)) lines.fail("malformed number '" + word + "' for " + what + " (decimal numbers only)");
+  const long double value = std::strtold(word.c_str(), nullptr);
+  const auto scalar = static_cast<Scalar>(value);
+  if (!std::isfinite(value) || !std::isfinite(scalar)) {
+    lines.fail("number '" + word + "' for " + what + " is out of range");
+  }
+  return scalar;
 }
 
 inline long parse_integer(const CaseLines& lines, const std::string& word, const std::string& what) {
   const char* begin = word.c_str();
   char* end = nullptr;
+  errno = 0;
   const long value = std::strtol(begin, &end, 10);
-  if (end == begin || *end != '\0') lines.fail("malformed integer '" + word + "' for " + what);
+  if (end == begin || *end != '\0' || !std::isdigit(static_cast<unsigned char>(word.back()))) {
+    lines.fail("malformed integer '" + word + "' for " + what);
+  }
+  if (errno == ERANGE) lines.fail("integer '" + word + "' for " + what + " is out of range");
   return value;
 }
 
@@ -199,6 +231,11 @@ class CaseReader {
     const Scalar dx = number(g[2], "dx");
     const Scalar dy = number(g[3], "dy");
     if (mx < 1 || my < 1 || !(dx > 0) || !(dy > 0)) lines_.fail("grid sizes must be positive (mx, my >= 1; dx, dy > 0)");
+    try {  // h alone, before its block is read
+      detail::check_memory(static_cast<double>(mx) * static_cast<double>(my), sizeof(Scalar), "grid mx x my");
+    } catch (const invalid_argument& error) {
+      lines_.fail(error.what());
+    }
     return Grid<Scalar>(mx, my, dx, dy, number(g[4], "x0"), number(g[5], "y0"));
   }
 

@@ -117,6 +117,7 @@ class CgSolver : public detail::SolverBase<CgSolver<Scalar>, CgWorkspace<Scalar>
       iteration.start();
       iteration.run(solution);
     }
+    detail::check_answer(solution, grid.mx(), grid.my(), grid.element_area(), loading);
     workspace.start_.remember_pressure(solution);
     return solution;
   }
@@ -270,6 +271,15 @@ class CgSolver : public detail::SolverBase<CgSolver<Scalar>, CgWorkspace<Scalar>
           work.convolution_->apply(p, u);
           fresh = true;
           continue;
+        }
+        // Nothing more to gain when the error or the depth it is measured against is not a
+        // finite positive number: C p underflows or δ overflows (E near 1e100, Fn near 1e300).
+        const Scalar depth = approach - deepest;
+        if (!(std::isfinite(error) && std::isfinite(depth) && depth > 0)) {
+          solution.status = Status::numerical_issue;
+          solution.message = "the complementarity error or the depth is not finite after " +
+                             std::to_string(iteration) + " iterations (modulus or force too large for the precision?)";
+          break;
         }
         if (iteration == options.max_iterations) {
           solution.status = Status::iteration_limit;

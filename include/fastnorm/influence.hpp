@@ -10,6 +10,7 @@
 #include <type_traits>
 #include <vector>
 
+#include "fastnorm/detail/memory_check.hpp"
 #include "fastnorm/error.hpp"
 #include "fastnorm/grid.hpp"
 #include "fastnorm/material.hpp"
@@ -80,7 +81,7 @@ class InfluenceTable {
   using Matrix = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;
 
   InfluenceTable(const Grid<Scalar>& grid, const Material<Scalar>& material)
-      : grid_(grid), combined_modulus_(material.combined_modulus()), table_(2 * grid.mx() - 1, grid.my()) {
+      : grid_(grid), combined_modulus_(material.combined_modulus()), table_(checked_rows(grid), grid.my()) {
     const Scalar a = grid.dx() / 2, b = grid.dy() / 2;
     const Index centre = grid.mx() - 1;
     for (Index dj = 0; dj < grid.my(); ++dj) {
@@ -219,6 +220,13 @@ class InfluenceTable {
   }
 
  private:
+  /// The table's 2·mx − 1 rows, once its (2·mx − 1)·my values are known to fit in memory.
+  static Index checked_rows(const Grid<Scalar>& grid) {
+    detail::check_memory((2 * static_cast<double>(grid.mx()) - 1) * static_cast<double>(grid.my()), sizeof(Scalar),
+                         "InfluenceTable: grid mx x my");
+    return 2 * grid.mx() - 1;
+  }
+
   Grid<Scalar> grid_;
   Scalar combined_modulus_;
   Matrix table_;

@@ -4,6 +4,7 @@
 
 #include <Eigen/Core>
 #include <cmath>
+#include <limits>
 #include <string>
 
 #include "fastnorm/error.hpp"
@@ -83,6 +84,10 @@ struct Solution {
   Scalar residual = 0;
   /// What happened, in words.
   std::string message;
+  /// A contact element lies on the boundary of the grid: the contact may reach beyond the
+  /// potential contact area, and then the answer is that of a truncated body (CONTACT
+  /// warns alike). Make the grid larger.
+  bool at_edge = false;
 
   Eigen::Index contact_count() const { return in_contact.count(); }
   /// Back to a default Solution on `elements` elements (zero pressures, no contact,
@@ -94,6 +99,7 @@ struct Solution {
     normal_force = approach = residual = 0;
     iterations = 0;
     message.clear();
+    at_edge = false;
   }
   /// The pressures are a usable answer: converged, no contact, or a resolved cycle.
   bool ok() const {
@@ -101,4 +107,44 @@ struct Solution {
   }
 };
 
+namespace detail {
+
+/// What every solver does to its answer last (docs/validation.md §6): `at_edge` from the
+/// contact set on an mx × my grid, and a usable answer checked for what a solver cannot
+/// see go wrong — pressures finite and ≥ 0, Fn finite and dx·dy·Σp, δ finite, and in force
+/// control the prescribed Fn met to √ε — or else marked `numerical_issue`. A modulus so
+/// large (or h so deep) that the elastic displacements vanish below the precision of h
+/// gives such an answer.
+template <typename Scalar>
+void check_answer(Solution<Scalar>& solution, Eigen::Index mx, Eigen::Index my, Scalar element_area,
+                  const Loading<Scalar>& loading) {
+  solution.at_edge = false;
+  for (Eigen::Index i = 0; i < mx && !solution.at_edge; ++i) {
+    solution.at_edge = solution.in_contact(i) || solution.in_contact(i + mx * (my - 1));
+  }
+  for (Eigen::Index j = 0; j < my && !solution.at_edge; ++j) {
+    solution.at_edge = solution.in_contact(mx * j) || solution.in_contact(mx - 1 + mx * j);
+  }
+  if (!solution.ok()) return;
+  const Scalar tolerance = std::sqrt(std::numeric_limits<Scalar>::epsilon());
+  const Scalar sum = element_area * solution.pressure.sum();
+  const char* failed = nullptr;
+  if (!solution.pressure.allFinite() || (solution.pressure.array() < Scalar(0)).any()) {
+    failed = "pressures not finite or negative";
+  } else if (!std::isfinite(solution.normal_force) || !std::isfinite(solution.approach)) {
+    failed = "force or approach not finite";
+  } else if (std::abs(solution.normal_force - sum) > tolerance * std::abs(sum)) {
+    failed = "force is not the sum of the pressures";
+  } else if (loading.control == Control::force &&
+             !(std::abs(solution.normal_force - loading.normal_force) <= tolerance * loading.normal_force)) {
+    failed = "the prescribed force is not met";
+  }
+  if (!failed) return;
+  solution.status = Status::numerical_issue;
+  solution.message = std::string("the answer fails its final check: ") + failed +
+                     " (Fn " + std::to_string(static_cast<double>(solution.normal_force)) +
+                     " N): elastic displacements below the precision of h (modulus too large?)";
+}
+
+}  // namespace detail
 }  // namespace fastnorm

@@ -53,7 +53,7 @@ TEST_CASE("every tool refuses a bad value by name, with status 2", "[cli]") {
       {FASTNORM_BENCH_EXE, "--repeats 0", "--repeats must be >= 1, not 0"},
       {FASTNORM_BENCH_EXE, "--growth --sizes 12,x", "--sizes needs a number, not 'x'"},
       {FASTNORM_BENCH_EXE, "--solvers magic", "unknown solver 'magic'"},
-      {FASTNORM_STUDY_EXE, "--elements 3", "--elements must be >= 4, not 3"},
+      {FASTNORM_STUDY_EXE, "--elements 3", "--elements must be in [4, 2000], not 3"},
       {FASTNORM_STUDY_EXE, "--out", "option --out needs a value"},
   };
   for (const auto& c : cases) {

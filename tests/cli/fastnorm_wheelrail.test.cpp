@@ -84,7 +84,10 @@ TEST_CASE("fastnorm-wheelrail refuses bad input with status 2", "[cli][wheelrail
                                                        {"--gauge 3000", "--gauge"},
                                                        {"--poisson 0.7", "--poisson"},
                                                        {"--young 210 --shear 82", "exclude"},
-                                                       {"--rail-young 0", "--rail-young"}};
+                                                       {"--rail-young 0", "--rail-young"},
+                                                       // issue #15: std::bad_alloc, and an internal message
+                                                       {"--elements 1e12", "--elements must be in [4, 2000]"},
+                                                       {"--load 1e300", "--load must be in (0, 1e+07]"}};
   for (const auto& [arguments, message] : cases) {
     INFO(arguments);
     const auto run = run_wheelrail(arguments);
@@ -97,7 +100,7 @@ TEST_CASE("fastnorm-wheelrail takes measured profile files", "[cli][wheelrail][p
   const std::string wheel = fastnorm::test::shared_profile("MBench_S1002_v3.prw");
   const std::string rail = fastnorm::test::shared_profile("MBench_UIC60_v3.prr");
   if (wheel.empty() || rail.empty()) {
-    WARN("the MBench profiles are not in ../shared/profiles: skipped");
+    fastnorm::test::reference_data_missing("the MBench profiles are not in ../shared/profiles");
     return;
   }
   // The Manchester benchmark's files are the closed-form S1002 and MB UIC60 sampled (the
@@ -180,6 +183,10 @@ TEST_CASE("fastnorm-wheelrail reports flange climb by status", "[cli][wheelrail]
   CHECK(fixed.status == 1);
   CHECK_THAT(fixed.output, Contains("# status=flange climb"));
   CHECK(run_wheelrail("--y 6 --elements 20").status == 0);
+  // Issue #15: at y = -29 mm the left flange rested on the rail head, reported converged.
+  const auto far = run_wheelrail("--y -29 --elements 20");
+  CHECK(far.status == 1);
+  CHECK_THAT(far.output, Contains("# status=flange climb") && Contains("the left wheel's contact"));
 }
 
 TEST_CASE("fastnorm-wheelrail takes the Manchester benchmark's radius and materials", "[cli][wheelrail]") {

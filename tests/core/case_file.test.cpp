@@ -110,3 +110,24 @@ TEST_CASE("Case reader rejects malformed files with the line number", "[case]") 
   CHECK_THROWS_WITH(read_text(edited("dx 1e-4", "dx 0")), Contains("test.case:6"));
   CHECK_THROWS_AS(fastnorm::read_case_file("/nonexistent/x.case"), fastnorm::invalid_argument);
 }
+
+TEST_CASE("Case reader refuses sizes beyond memory and numbers that are not plain decimals", "[case]") {
+  // Issue #15: a 30-byte edit to mx, my made std::bad_alloc escape; 1e400 was caught after
+  // reading, without file:line; 0x10 was read as 16.
+  CHECK(error_line(edited("grid mx 3 my 2", "grid mx 3000000000 my 3000000000")) == 6);
+  CHECK_THROWS_WITH(read_text(edited("grid mx 3 my 2", "grid mx 3000000000 my 3000000000")),
+                    Contains("test.case:6: grid mx x my") && Contains("more than this machine's memory"));
+  CHECK(error_line(edited("control force 1500", "control force 1e400")) == 8);
+  CHECK_THROWS_WITH(read_text(edited("control force 1500", "control force 1e400")), Contains("out of range"));
+  CHECK(error_line(edited("-4e-6 5e-6 -6e-6", "-4e-6 1e400 -6e-6")) == 11);
+  CHECK_THROWS_WITH(read_text(edited("control force 1500", "control force 0x10")),
+                    Contains("test.case:8") && Contains("decimal numbers only"));
+  CHECK(error_line(edited("-4e-6 5e-6 -6e-6", "-4e-6 0x5p-3 -6e-6")) == 11);
+  CHECK(error_line(edited("-4e-6 5e-6 -6e-6", "-4e-6 infinity -6e-6")) == 11);
+  CHECK(error_line(edited("-4e-6 5e-6 -6e-6", "-4e-6 1e -6e-6")) == 11);
+  CHECK(error_line(edited("-4e-6 5e-6 -6e-6", "-4e-6 . -6e-6")) == 11);
+  CHECK(error_line(edited("grid mx 3 my 2", "grid mx 99999999999999999999 my 2")) == 6);
+  CHECK(error_line(edited("grid mx 3 my 2", "grid mx 3+ my 2")) == 6);
+  // What the format writes still reads: signs, no leading digit, capital exponent.
+  CHECK_NOTHROW(read_text(edited("-4e-6 5e-6 -6e-6", "-4E-6 +.5e-5 -6.0e-06")));
+}

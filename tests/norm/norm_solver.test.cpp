@@ -2,6 +2,7 @@
 #include <cmath>
 #include <fastnorm/hertz.hpp>
 #include <fastnorm/norm_solver.hpp>
+#include <fastnorm/any_solver.hpp>
 
 #include "support/complementarity.hpp"
 #include "support/surfaces.hpp"
@@ -104,4 +105,65 @@ TEST_CASE("NORM rejects bad input naming the argument", "[norm]") {
   options = {};
   options.start_depth_fraction = 0;
   CHECK_THROWS_WITH(fastnorm::NormSolver<>(grid, steel, options), Contains("start_depth_fraction"));
+}
+
+namespace {
+
+// A sphere of radius 0.3 m on a 20 × 20 grid of 0.5 mm elements (±5 mm): its Hertz radius
+// at 5 kN is 2.1 mm, inside the grid.
+Eigen::VectorXd sphere(const fastnorm::Grid<>& on) {
+  Eigen::VectorXd h(on.size());
+  for (Eigen::Index k = 0; k < on.size(); ++k) {
+    const double x = on.x(on.i_of(k)), y = on.y(on.j_of(k));
+    h(k) = (x * x + y * y) / (2 * 0.3);
+  }
+  return h;
+}
+
+}  // namespace
+
+TEST_CASE("Every solver checks its answer and flags contact at the grid's edge", "[norm]") {
+  // Issue #15: NORM at E = 1e30 gave `converged` with the force 2 % off; at E >= 1e100
+  // `cycled` with an infinite approach; Fn = 1e300 gave `converged` with every element in
+  // contact and nothing said about the edge of the potential contact area. Now a usable
+  // answer is a consistent one (prescribed force met, everything finite), anything else a
+  // status; CG, which keeps the four central elements' symmetry, answers the rigid limit
+  // correctly.
+  const fastnorm::Grid<> square(20, 20, 5e-4, 5e-4, -4.75e-3, -4.75e-3);
+  const Eigen::VectorXd h = sphere(square);
+  auto consistent = [&](const fastnorm::Solution<>& answer, double force) {
+    CHECK(answer.pressure.allFinite());
+    CHECK(std::isfinite(answer.approach));
+    CHECK(answer.normal_force == Approx(force).epsilon(1e-8));
+  };
+  for (const char* name : {"norm", "cg", "elliptic", "polynomial:2"}) {
+    INFO(name);
+    const fastnorm::AnySolver<> solver(name, square, steel);
+    const auto inside = solver.solve(h, fastnorm::Loading<>::force(5e3));
+    REQUIRE(inside.ok());
+    CHECK_FALSE(inside.at_edge);
+    const auto everywhere = solver.solve(h, fastnorm::Loading<>::force(1e300));
+    INFO(fastnorm::to_string(everywhere.status) << ": " << everywhere.message);
+    if (everywhere.ok()) {
+      CHECK(everywhere.at_edge);
+      consistent(everywhere, 1e300);
+    } else {
+      CHECK(everywhere.status == fastnorm::Status::numerical_issue);
+    }
+    for (double modulus : {1e30, 1e100, 1e300}) {
+      INFO("E = " << modulus);
+      const fastnorm::AnySolver<> rigid(name, square, fastnorm::Material<>(modulus, 0.3));
+      const auto answer = rigid.solve(h, fastnorm::Loading<>::force(5e4));
+      INFO(fastnorm::to_string(answer.status) << ": " << answer.message);
+      if (answer.ok()) {
+        consistent(answer, 5e4);
+      } else {
+        CHECK(answer.status == fastnorm::Status::numerical_issue);
+      }
+    }
+  }
+  // The issue's own case: NORM's single element carrying everything is caught.
+  const auto norm = fastnorm::NormSolver<>(square, fastnorm::Material<>(1e30, 0.3)).solve(h, fastnorm::Loading<>::force(5e4));
+  CHECK(norm.status == fastnorm::Status::numerical_issue);
+  CHECK_THAT(norm.message, Contains("final check"));
 }

@@ -58,7 +58,7 @@ TEST_CASE("Reduced solvers against full NORM on every peer case", "[reduced][pee
                              [](const std::string& f) { return f.find("120x120") != std::string::npos; }),
               files.end());
   if (files.empty()) {
-    WARN("peer cases not found in " << fastnorm::test::peer_cases_dir() << ": skipped");
+    fastnorm::test::reference_data_missing("peer cases not found in " + fastnorm::test::peer_cases_dir());
     return;
   }
   for (const auto& path : files) {

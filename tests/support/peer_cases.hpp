@@ -2,6 +2,8 @@
 // Locates the shared reference data beside the repository: CONTACT's cases
 // (../shared/peer-cases, or FASTNORM_PEER_CASES) and the MBench profiles (../shared/profiles).
 
+#include <catch2/catch.hpp>
+
 #include <algorithm>
 #include <cstdlib>
 #include <filesystem>
@@ -38,6 +40,14 @@ inline std::vector<std::string> peer_case_files(const std::string& prefix = "") 
   }
   std::sort(files.begin(), files.end());
   return files;
+}
+
+/// The reference data a test needs is absent: a warning and a skip, or a failure when
+/// FASTNORM_REQUIRE_SHARED is set (as .ci/run sets it: a CI without the data must not pass
+/// these tests vacuously).
+inline void reference_data_missing(const std::string& what) {
+  if (std::getenv("FASTNORM_REQUIRE_SHARED")) FAIL(what << " (FASTNORM_REQUIRE_SHARED is set)");
+  WARN(what << ": skipped");
 }
 
 }  // namespace fastnorm::test

@@ -25,7 +25,7 @@ struct WheelRailCase {
 // The wr_* peer cases; none, with a warning, when ../shared/peer-cases is absent.
 inline std::vector<std::string> wheelrail_peer_cases() {
   auto files = peer_case_files("wr_");
-  if (files.empty()) WARN("no wr_* peer cases found: skipped");
+  if (files.empty()) reference_data_missing("no wr_* peer cases found");
   return files;
 }
 

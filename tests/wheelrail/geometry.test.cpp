@@ -386,3 +386,17 @@ TEST_CASE("The undeformed distance is exact to 1 nm on many poses", "[wheelrail]
   CHECK(worst <= 1e-9);
   WARN("undeformed distance against bisection on " << elements << " elements: largest difference " << worst << " m");
 }
+
+TEST_CASE("The geometry refuses a pose that is not finite or out of range", "[wheelrail][geometry]") {
+  // Issue #15: a NaN or huge z in the wheel-rail pieces gave no regions, no force, no error.
+  const wr::Track track;
+  const wr::Wheelset wheelset;
+  const wr::WheelsetPose nan_z{0, std::nan(""), 0, 0}, huge_z{0, 1e6, 0, 0};
+  for (const auto& pose : {nan_z, huge_z}) {
+    CHECK_THROWS_WITH(wr::contact_regions(track, wheelset, wr::Side::right, pose), Contains("z must lie within"));
+    CHECK_THROWS_WITH(wr::sample_gap(track, wheelset, wr::Side::right, pose), Contains("z must lie within"));
+    Eigen::VectorXd h;
+    CHECK_THROWS_WITH(wr::undeformed_distance(track, wheelset, pose, wr::PatchFrame{}, fastnorm::Grid<>(2, 2, 1e-4, 1e-4), h),
+                      Contains("undeformed_distance: z must lie within"));
+  }
+}

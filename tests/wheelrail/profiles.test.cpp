@@ -86,7 +86,7 @@ TEST_CASE("UIC60 head matches the verification points of both variants", "[wheel
 TEST_CASE("The MBench S1002 file is the analytic S1002", "[wheelrail][profiles][peer]") {
   const std::string path = fastnorm::test::shared_profile("MBench_S1002_v3.prw");
   if (path.empty()) {
-    WARN("MBench_S1002_v3.prw not found in ../shared/profiles: skipped");
+    fastnorm::test::reference_data_missing("MBench_S1002_v3.prw not found in ../shared/profiles");
     return;
   }
   const auto points = fastnorm::wheelrail::read_profile_file(path);
@@ -120,7 +120,7 @@ TEST_CASE("The MBench S1002 file is the analytic S1002", "[wheelrail][profiles][
 TEST_CASE("The MBench UIC60 file is the MB variant, canted 1:40", "[wheelrail][profiles][peer]") {
   const std::string path = fastnorm::test::shared_profile("MBench_UIC60_v3.prr");
   if (path.empty()) {
-    WARN("MBench_UIC60_v3.prr not found in ../shared/profiles: skipped");
+    fastnorm::test::reference_data_missing("MBench_UIC60_v3.prr not found in ../shared/profiles");
     return;
   }
   const auto points = fastnorm::wheelrail::read_profile_file(path);

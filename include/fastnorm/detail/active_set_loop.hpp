@@ -219,6 +219,8 @@ class ActiveSetLoop {
     solution_.status = status;
     solution_.message = message;
     solution_.residual = residual_;
+    const auto& grid = influence_.grid();
+    check_answer(solution_, grid.mx(), grid.my(), grid.element_area(), loading_);
     return std::move(solution_);
   }
 

@@ -91,6 +91,7 @@ inline double sample_y(const ProfileCurve& profile, double step, std::size_t k) 
 /// The gap sampled every `options.step` over the wheel profile.
 inline std::vector<GapSample> sample_gap(const Track& track, const Wheelset& wheelset, Side side,
                                          const WheelsetPose& pose, const SearchOptions& options = {}) {
+  check_pose(pose, "contact search");
   options.validate();
   const auto& profile = wheelset.profile();
   const auto count = detail::last_sample(profile, options.step);
@@ -125,6 +126,7 @@ class GapSampler {
   /// reused from call to call).
   const std::vector<GapSample>& sample(const Track& track, const Wheelset& wheelset, Side side,
                                        const WheelsetPose& pose, const SearchOptions& options) {
+    check_pose(pose, "contact search");
     options.validate();
     const auto& profile = wheelset.profile();
     const auto count = detail::last_sample(profile, options.step);

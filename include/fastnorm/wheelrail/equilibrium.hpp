@@ -402,9 +402,15 @@ class EquilibriumSearch {
   Eigen::Vector2d residual_ = Eigen::Vector2d::Zero();
 };
 
+/// The largest load an equilibrium takes (N): 1000 t, far beyond any wheelset's, and small
+/// enough that the approach guess and the patch sizes stay finite.
+inline constexpr double max_load = 1e7;
+
 inline void check_load(double load, const char* load_name) {
-  FASTNORM_CHECK(std::isfinite(load) && load > 0,
-                 fastnorm::detail::describe(std::string("equilibrium: ") + load_name + " must be positive (N)", load));
+  FASTNORM_CHECK(std::isfinite(load) && load > 0 && load <= max_load,
+                 fastnorm::detail::describe(std::string("equilibrium: ") + load_name + " must lie in (0, " +
+                                                fastnorm::detail::to_text(max_load) + "] N",
+                                            load));
 }
 
 }  // namespace detail

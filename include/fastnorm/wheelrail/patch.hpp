@@ -8,6 +8,7 @@
 #include <array>
 #include <cmath>
 #include <optional>
+#include <string>
 
 #include "fastnorm/error.hpp"
 #include "fastnorm/grid.hpp"
@@ -19,12 +20,18 @@ namespace fastnorm::wheelrail {
 /// interpenetration region is covered by about `elements` × `elements`.
 struct PatchGridOptions {
   Eigen::Index elements = 60;  ///< elements across the largest region, each direction
+  /// The most `elements` allowed: 2000² = 4·10⁶ elements on the largest patch, beyond what
+  /// any solver here finishes in reasonable time (full NORM stops being practical near 10⁴).
+  static constexpr Eigen::Index max_elements = 2000;
   double element_length = 0;   ///< dx, rolling direction (0: from `elements`)
   double element_width = 0;    ///< ds, lateral in the tangent plane (0: from `elements`)
 
   /// @throws fastnorm::invalid_argument naming the offending field
   void validate() const {
-    FASTNORM_CHECK(elements >= 4, fastnorm::detail::describe("PatchGridOptions: elements must be >= 4", elements));
+    FASTNORM_CHECK(elements >= 4 && elements <= max_elements,
+                   fastnorm::detail::describe("PatchGridOptions: elements must lie in [4, " +
+                                                  std::to_string(max_elements) + "]",
+                                              elements));
     FASTNORM_CHECK(std::isfinite(element_length) && element_length >= 0,
                    fastnorm::detail::describe("PatchGridOptions: element_length must be >= 0 (m)", element_length));
     FASTNORM_CHECK(std::isfinite(element_width) && element_width >= 0,
@@ -77,6 +84,9 @@ inline constexpr double one_step_acceptance = 2e-7;
 /// √(x_w² + z_w²) = ρ(y_w) in wheelset coordinates. `h` is resized to the grid.
 inline void undeformed_distance(const Track& track, const Wheelset& wheelset, const WheelsetPose& pose,
                                 const PatchFrame& frame, const Grid<double>& grid, Eigen::VectorXd& h) {
+  check_pose(pose, "undeformed_distance");
+  FASTNORM_CHECK(frame.reference.allFinite() && std::isfinite(frame.inclination),
+                 "undeformed_distance: the patch frame's reference point and inclination must be finite");
   const Eigen::Vector3d lateral = frame.lateral_axis(), normal = frame.normal();
   const Eigen::Matrix3d rotation = Wheelset::rotation(pose);
   const Eigen::Vector3d centre = wheelset.centre(pose);
