@@ -141,9 +141,7 @@ inline long parse_integer(const CaseLines& lines, const std::string& word, const
   char* end = nullptr;
   errno = 0;
   const long value = std::strtol(begin, &end, 10);
-  if (end == begin || *end != '\0' || !std::isdigit(static_cast<unsigned char>(word.back()))) {
-    lines.fail("malformed integer '" + word + "' for " + what);
-  }
+  if (end == begin || *end != '\0') lines.fail("malformed integer '" + word + "' for " + what);
   if (errno == ERANGE) lines.fail("integer '" + word + "' for " + what + " is out of range");
   return value;
 }

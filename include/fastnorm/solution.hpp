@@ -119,6 +119,7 @@ template <typename Scalar>
 void check_answer(Solution<Scalar>& solution, Eigen::Index mx, Eigen::Index my, Scalar element_area,
                   const Loading<Scalar>& loading) {
   solution.at_edge = false;
+  if (solution.in_contact.size() != mx * my) return;  // not filled: nothing to check
   for (Eigen::Index i = 0; i < mx && !solution.at_edge; ++i) {
     solution.at_edge = solution.in_contact(i) || solution.in_contact(i + mx * (my - 1));
   }

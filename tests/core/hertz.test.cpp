@@ -44,3 +44,30 @@ TEST_CASE("Hertz rejects bad input naming the argument", "[hertz]") {
   CHECK_THROWS_WITH(fastnorm::hertz_from_force(0.3, 0.3, 1e11, 0.0), Contains("normal_force"));
   CHECK_THROWS_WITH(fastnorm::hertz_from_approach(0.3, 0.3, 1e11, -1e-5), Contains("approach"));
 }
+
+TEST_CASE("The complete elliptic integrals need no library function libc++ lacks", "[hertz]") {
+  // Closed forms: K(0) = E(0) = π/2; at k = 1/√2, K = Γ(1/4)²/(4√π), E = K/2 + π/(4K)
+  // (Legendre's relation at the lemniscatic modulus).
+  const double pi = 3.14159265358979323846;
+  const auto [k0, e0] = fastnorm::detail::complete_elliptic_integrals(0.0);
+  CHECK(k0 == Approx(pi / 2).epsilon(1e-15));
+  CHECK(e0 == Approx(pi / 2).epsilon(1e-15));
+  const double lemniscatic = std::pow(std::tgamma(0.25), 2) / (4 * std::sqrt(pi));
+  const auto [k1, e1] = fastnorm::detail::complete_elliptic_integrals(std::sqrt(0.5));
+  CHECK(k1 == Approx(lemniscatic).epsilon(1e-14));
+  CHECK(e1 == Approx(lemniscatic / 2 + pi / (4 * lemniscatic)).epsilon(1e-14));
+  // Near k = 1: K ≈ ln(4/k'), E → 1.
+  const double near_one = 1 - 1e-12, complement = std::sqrt((1 - near_one) * (1 + near_one));  // k' as stored
+  const auto [k2, e2] = fastnorm::detail::complete_elliptic_integrals(near_one);
+  CHECK(k2 == Approx(std::log(4 / complement)).epsilon(1e-9));
+  CHECK(e2 == Approx(1).epsilon(1e-9));
+  // Legendre's relation E K' + E' K − K K' = π/2 over the range.
+  for (double k = 0.05; k < 1; k += 0.1) {
+    const auto [big_k, big_e] = fastnorm::detail::complete_elliptic_integrals(k);
+    const auto [big_k2, big_e2] = fastnorm::detail::complete_elliptic_integrals(std::sqrt(1 - k * k));
+    CHECK(big_e * big_k2 + big_e2 * big_k - big_k * big_k2 == Approx(pi / 2).epsilon(1e-14));
+  }
+  const auto [kf, ef] = fastnorm::detail::complete_elliptic_integrals(std::sqrt(0.5f));
+  CHECK(kf == Approx(lemniscatic).epsilon(1e-6));
+  CHECK(ef == Approx(lemniscatic / 2 + pi / (4 * lemniscatic)).epsilon(1e-6));
+}

@@ -3,7 +3,6 @@
 /// Sizes checked against what the machine can hold before they are allocated: a grid of
 /// 3·10⁹ × 3·10⁹ elements is a clear error naming the field, not std::bad_alloc.
 
-#include <cmath>
 #include <cstddef>
 #include <limits>
 #include <string>
@@ -26,9 +25,9 @@ inline double physical_memory() {
   return std::numeric_limits<double>::max();
 }
 
-/// @throws fastnorm::invalid_argument "<what>: <count> values of <bytes_each> bytes need
-///         ..., more than this machine's memory" when count · bytes_each exceeds it
-///         (`count` as a double: a product of sizes may overflow any integer type)
+/// @throws fastnorm::invalid_argument "<what>: <count> values need <bytes> bytes, more than
+///         this machine's memory" when count · bytes_each exceeds it (`count` as a double:
+///         a product of sizes may overflow any integer type)
 inline void check_memory(double count, double bytes_each, const std::string& what) {
   const double bytes = count * bytes_each, memory = physical_memory();
   FASTNORM_CHECK(bytes <= memory, what + ": " + to_text(count) + " values need " + to_text(bytes) +
