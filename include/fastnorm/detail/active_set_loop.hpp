@@ -87,7 +87,11 @@ class ActiveSetLoop {
     work_.is_active.assign(static_cast<std::size_t>(n_all), 0);
     while (solution_.iterations < options_.max_iterations) {
       if (work_.seen_before(work_.active)) {
-        FASTNORM_ASSERT(!work_.admissible_set.empty());
+        if (work_.admissible_set.empty()) {  // no set ever had positive pressures: round-off rules
+          return finish(Status::numerical_issue,
+                        "active set cycled before any set had positive pressures (modulus too large for the "
+                        "precision?)");
+        }
         store(work_.admissible_set, work_.admissible_pressure.data(), admissible_approach_);
         return finish(Status::cycled, "active set cycled; returned the last set with positive pressures");
       }
