@@ -4,6 +4,7 @@
 /// contact problem, optionally with a solution.
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <cctype>
 #include <cerrno>
 #include <cmath>
@@ -265,10 +266,12 @@ class CaseReader {
   }
 
   // A block of `count` numbers after its keyword line; `more` tells whether a keyword line
-  // (now in words_) ended it rather than the end of the file.
+  // (now in words_) ended it rather than the end of the file. The storage grows with the
+  // numbers read, so a short file that states a huge grid fails at its end without first
+  // allocating mx*my values.
   Vector read_block(const std::string& keyword, Eigen::Index count, bool& more) {
-    Vector values(count);
-    Eigen::Index filled = 0;
+    std::vector<Scalar> values;
+    values.reserve(static_cast<std::size_t>(std::min<Eigen::Index>(count, 1 << 16)));
     more = false;
     while (lines_.next(words_, text_)) {
       if (is_keyword(words_[0])) {
@@ -276,17 +279,17 @@ class CaseReader {
         break;
       }
       for (const auto& word : words_) {
-        if (filled == count) {
+        if (static_cast<Eigen::Index>(values.size()) == count) {
           lines_.fail("block '" + keyword + "' has more than mx*my = " + std::to_string(count) + " numbers");
         }
-        values(filled++) = number(word, "block '" + keyword + "'");
+        values.push_back(number(word, "block '" + keyword + "'"));
       }
     }
-    if (filled != count) {
+    if (static_cast<Eigen::Index>(values.size()) != count) {
       lines_.fail("block '" + keyword + "' ends " + (more ? "here" : "at the end of the file") + " with " +
-                  std::to_string(filled) + " numbers, expected mx*my = " + std::to_string(count));
+                  std::to_string(values.size()) + " numbers, expected mx*my = " + std::to_string(count));
     }
-    return values;
+    return Eigen::Map<const Vector>(values.data(), count);
   }
 
   // The `result` line (already in words_) and the `p` block.

@@ -47,6 +47,12 @@ class Grid {
                    detail::describe("grid: dy must be positive and finite", dy));
     FASTNORM_CHECK(std::isfinite(x0), detail::describe("grid: x0 must be finite", x0));
     FASTNORM_CHECK(std::isfinite(y0), detail::describe("grid: y0 must be finite", y0));
+    // Sizes that the arithmetic of a solve can carry: the element area dx·dy neither
+    // overflows nor underflows, and the far corner of the grid is finite.
+    FASTNORM_CHECK(std::isnormal(dx * dy),
+                   detail::describe("grid: the element area dx*dy overflows or underflows (lengths in m?)", dx * dy));
+    FASTNORM_CHECK(std::isfinite(x0 + static_cast<Scalar>(mx) * dx) && std::isfinite(y0 + static_cast<Scalar>(my) * dy),
+                   "grid: x0 + mx*dx and y0 + my*dy must be finite");
   }
 
   Index mx() const { return mx_; }

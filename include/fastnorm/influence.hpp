@@ -47,7 +47,7 @@ Work love_primitive(Work X, Work Y) {
 template <typename Scalar>
 Scalar love_coefficient(Scalar x, Scalar y, Scalar a, Scalar b, Scalar combined_modulus) {
   using Work = detail::KernelWork<Scalar>;
-  const Work xw = x, yw = y, aw = a, bw = b;
+  const Work xw = static_cast<Work>(x), yw = static_cast<Work>(y), aw = static_cast<Work>(a), bw = static_cast<Work>(b);
   const Work sum = detail::love_primitive(xw + aw, yw + bw) - detail::love_primitive(xw - aw, yw + bw) -
                    detail::love_primitive(xw + aw, yw - bw) + detail::love_primitive(xw - aw, yw - bw);
   const Work pi = Work(3.14159265358979323846264338327950288L);

@@ -12,7 +12,8 @@ namespace fastnorm {
 
 /// Young's modulus (Pa) and Poisson's ratio of the two bodies in contact.
 ///
-/// Class invariant: both moduli positive and finite; both ratios in (−1, 0.5].
+/// Class invariant: both moduli positive, finite and normal, and so is E*; both ratios in
+/// (−1, 0.5].
 template <typename Scalar = double>
 class Material {
   static_assert(std::is_floating_point_v<Scalar>,
@@ -34,15 +35,19 @@ class Material {
         poisson_ratio_{poisson_ratio_1, poisson_ratio_2} {
     for (int body = 0; body < 2; ++body) {
       const std::string suffix = "_" + std::to_string(body + 1);
-      FASTNORM_CHECK(std::isfinite(young_modulus_[body]) && young_modulus_[body] > 0,
+      FASTNORM_CHECK(std::isnormal(young_modulus_[body]) && young_modulus_[body] > 0,
                      detail::describe("material: young_modulus" + suffix +
-                                          " must be positive and finite (Pa)",
+                                          " must be positive, finite and normal (Pa)",
                                       young_modulus_[body]));
       FASTNORM_CHECK(poisson_ratio_[body] > Scalar(-1) && poisson_ratio_[body] <= Scalar(0.5),
                      detail::describe("material: poisson_ratio" + suffix +
                                           " must lie in (-1, 0.5]",
                                       poisson_ratio_[body]));
     }
+    // 1/E* is a sum of two compliances, each up to 1/min E: it must stay finite.
+    FASTNORM_CHECK(std::isnormal(combined_modulus()),
+                   detail::describe("material: the combined modulus E* must be a normal number (Pa)",
+                                    combined_modulus()));
   }
 
   /// Young's modulus of body 1 or 2 (Pa).

@@ -1,6 +1,8 @@
 #include <catch2/catch.hpp>
 #include <fastnorm/grid.hpp>
 
+#include <limits>
+
 using Catch::Matchers::Contains;
 
 TEST_CASE("Grid numbers elements with x fastest and places their centres", "[grid]") {
@@ -21,6 +23,12 @@ TEST_CASE("Grid rejects bad sizes naming the argument", "[grid]") {
   CHECK_THROWS_WITH(G(3, 3, 0.0, 1.0), Contains("dx"));
   CHECK_THROWS_WITH(G(3, 3, 1.0, -2.0), Contains("dy"));
   CHECK_THROWS_WITH(G(3, 3, 1.0, std::nan("")), Contains("dy"));
-  CHECK_THROWS_WITH(G(3, 3, 1.0, 1.0, INFINITY), Contains("x0"));
-  CHECK_THROWS_AS(G(3, 3, 1.0, 1.0, 0.0, NAN), fastnorm::invalid_argument);
+  CHECK_THROWS_WITH(G(3, 3, 1.0, 1.0, std::numeric_limits<double>::infinity()), Contains("x0"));
+  CHECK_THROWS_AS(G(3, 3, 1.0, 1.0, 0.0, std::numeric_limits<double>::quiet_NaN()), fastnorm::invalid_argument);
+  // Sizes whose area or extent the arithmetic cannot carry (found by tests/fuzz/solvers:
+  // dx = 3e209, dy = 7.5e199 made the force 0 * inf = NaN).
+  CHECK_THROWS_WITH(G(1, 1, 3.3e209, 7.5e199), Contains("element area"));
+  CHECK_THROWS_WITH(G(1, 1, 1e-200, 1e-200), Contains("element area"));
+  CHECK_THROWS_WITH(G(4, 4, 1e308, 1.0, 1e308), Contains("mx*dx"));
+  CHECK_NOTHROW(G(4, 4, 1e-150, 1e-150));
 }

@@ -97,14 +97,14 @@ TEST_CASE("Influence coefficients agree with numerical quadrature of 1/r", "[inf
 
   SECTION("near offsets, the self term included") {
     for (auto [di, dj] : std::vector<std::pair<int, int>>{{0, 0}, {1, 0}, {0, 1}, {1, 1}, {2, 1}, {1, 3}}) {
-      const Real expected = quadrature_coefficient(di, dj, shape.dx, shape.dy, table.combined_modulus(), true);
+      const Real expected = quadrature_coefficient(di, dj, Real(shape.dx), Real(shape.dy), Real(table.combined_modulus()), true);
       INFO("dx=" << shape.dx << " dy=" << shape.dy << " offset (" << di << "," << dj << ")");
       CHECK(std::abs(table.at_offset(di, dj) / static_cast<double>(expected) - 1) <= 1e-9);
     }
   }
   SECTION("far offsets") {
     for (auto [di, dj] : std::vector<std::pair<int, int>>{{4, 3}, {10, 0}, {0, 17}, {25, 9}, {59, 59}}) {
-      const Real expected = quadrature_coefficient(di, dj, shape.dx, shape.dy, table.combined_modulus(), false);
+      const Real expected = quadrature_coefficient(di, dj, Real(shape.dx), Real(shape.dy), Real(table.combined_modulus()), false);
       INFO("dx=" << shape.dx << " dy=" << shape.dy << " offset (" << di << "," << dj << ")");
       CHECK(std::abs(table.at_offset(di, dj) / static_cast<double>(expected) - 1) <= 1e-9);
     }

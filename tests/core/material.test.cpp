@@ -21,5 +21,9 @@ TEST_CASE("Material rejects bad constants naming the argument", "[material]") {
   CHECK_THROWS_WITH(M(2e11, 0.6), Contains("poisson_ratio_1"));
   CHECK_THROWS_WITH(M(2e11, 0.3, 2e11, -1.0), Contains("poisson_ratio_2"));
   CHECK_THROWS_AS(M(std::nan(""), 0.3), fastnorm::invalid_argument);
+  // A subnormal modulus (found by tests/fuzz/solvers), and normal moduli whose E* is not.
+  CHECK_THROWS_WITH(M(1.5e-314, 0.3), Contains("young_modulus_1") && Contains("normal"));
+  CHECK_THROWS_WITH(M(3e-308, 0.0, 3e-308, 0.0), Contains("combined modulus"));
+  CHECK(M(1e-300, 0.3).combined_modulus() == Approx(1e-300 / (2 * 0.91)));
   CHECK_NOTHROW(M(2e11, 0.5));  // incompressible is allowed
 }

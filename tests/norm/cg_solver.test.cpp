@@ -10,6 +10,7 @@
 #include <fastnorm/norm_solver.hpp>
 
 #include "support/complementarity.hpp"
+#include "support/signorini.hpp"
 #include "support/surfaces.hpp"
 
 using Catch::Matchers::Contains;
@@ -35,17 +36,6 @@ void require_same_as_norm(const Eigen::VectorXd& h, const fastnorm::Loading<>& l
   CHECK((iterative.in_contact == exact.in_contact).all());
   CHECK(std::abs(iterative.approach - exact.approach) <= 1e-9 * h.cwiseAbs().maxCoeff());
   fastnorm::test::require_complementarity(cg.influence(), h, iterative);
-}
-
-/// The complementarity error of docs/performance.md Eq. (P1), from an independent C p.
-double complementarity_error(const fastnorm::InfluenceTable<>& table, const Eigen::VectorXd& h,
-                             const fastnorm::Solution<>& solution) {
-  const Eigen::VectorXd gap = (h.array() - solution.approach).matrix() + table.displacement(solution.pressure);
-  double error = 0;
-  for (Eigen::Index k = 0; k < h.size(); ++k) {
-    error = std::max(error, solution.pressure(k) > 0 ? std::abs(gap(k)) : -gap(k));
-  }
-  return error / (solution.approach - h.minCoeff());
 }
 
 }  // namespace
@@ -83,7 +73,7 @@ TEST_CASE("CG stops when the complementarity error is below its tolerance", "[no
     for (const auto& loading : {fastnorm::Loading<>::approach(), fastnorm::Loading<>::force(2e4)}) {
       const auto solution = cg.solve(h, loading);
       REQUIRE(solution.status == fastnorm::Status::converged);
-      const double error = complementarity_error(cg.influence(), h, solution);
+      const double error = fastnorm::test::complementarity_error(cg.influence(), h, solution);
       INFO("tolerance " << tolerance << ": error " << error << " after " << solution.iterations << " iterations");
       CHECK(error <= tolerance * (1 + 1e-6));
       if (loading.control == fastnorm::Control::approach) {

@@ -1,5 +1,6 @@
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <limits>
 #include <fastnorm/hertz.hpp>
 #include <fastnorm/norm_solver.hpp>
 #include <fastnorm/any_solver.hpp>
@@ -89,7 +90,7 @@ TEST_CASE("NORM rejects bad input naming the argument", "[norm]") {
                     Contains("undeformed_distance"));
   h(17) = std::nan("");
   CHECK_THROWS_WITH(solver.solve(h, fastnorm::Loading<>::approach()), Contains("undeformed_distance[17]"));
-  h(17) = INFINITY;
+  h(17) = std::numeric_limits<double>::infinity();
   CHECK_THROWS_AS(solver.solve(h, fastnorm::Loading<>::approach()), fastnorm::invalid_argument);
   CHECK_THROWS_WITH(fastnorm::Loading<>::force(0.0), Contains("normal_force"));
   CHECK_THROWS_WITH(fastnorm::Loading<>::force(-5.0), Contains("normal_force"));

@@ -9,6 +9,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 
 #include "support/peer_cases.hpp"
 
@@ -172,11 +173,26 @@ TEST_CASE("Profile files: plain text, SIMPACK flags and errors", "[wheelrail][pr
   CHECK_THROWS_WITH(fastnorm::wheelrail::read_profile_file((dir / "rotated.prr").string()), Contains("rotate"));
   CHECK_THROWS_WITH(fastnorm::wheelrail::read_profile_file((dir / "missing.txt").string()), Contains("missing.txt"));
 
+  // From a stream; points beyond 1 m (here a file in mm read as metres, or a unit that
+  // overflows) are refused at their line instead of giving infinite chord lengths.
+  std::istringstream in_metres("-0.003 0.0002\n-0.001 0.00002\n1500 0\n");
+  CHECK_THROWS_WITH(fastnorm::wheelrail::read_profile(in_metres, "stream", 1.0),
+                    Contains("stream:3") && Contains("more than 1 m"));
+  std::istringstream overflow("  units.len.f = 1e-300\n  point.begin\n 1 2\n 2 3\n 4 5\n  point.end\n");
+  CHECK_THROWS_WITH(fastnorm::wheelrail::read_profile(overflow, "stream"), Contains("stream:3"));
+  std::istringstream plain_stream("-3 0.2254\n-1 0.0250\n0 0\n");
+  CHECK(fastnorm::wheelrail::read_profile(plain_stream, "stream").z[1] == Approx(0.025e-3));
+  std::istringstream any;
+  CHECK_THROWS_WITH(fastnorm::wheelrail::read_profile(any, "stream", 0.0), Contains("plain_length_unit"));
+
   const fastnorm::wheelrail::SplineProfile spline(flagged);  // decreasing y is reordered
   CHECK(spline.y_min() == Approx(-4e-3));
   CHECK(spline.evaluate(-2e-3).value == Approx(4e-3));  // a knot: exact
   CHECK_THROWS_WITH(spline.evaluate(0.0), Contains("outside"));
   fastnorm::wheelrail::ProfilePoints zigzag{{0, 1e-3, 0.5e-3}, {0, 0, 0}};
   CHECK_THROWS_WITH(fastnorm::wheelrail::SplineProfile(zigzag), Contains("monotone"));
+  // Points 5e-77 m apart (found by tests/fuzz/profile_reader) overflowed the spline.
+  fastnorm::wheelrail::ProfilePoints crowded{{-3e-5, -5e-77, 0}, {-0.04, 0, 0}};
+  CHECK_THROWS_WITH(fastnorm::wheelrail::SplineProfile(crowded), Contains("closer than 1 nm, at point") && Contains("got 2"));
   fs::remove_all(dir);
 }

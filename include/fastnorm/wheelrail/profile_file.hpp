@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <istream>
 #include <limits>
 #include <sstream>
 #include <string>
@@ -24,19 +25,24 @@ struct ProfilePoints {
   std::vector<double> z;
 };
 
-/// Reads a SIMPACK profile file (recognised by `point.begin`) or plain two-column text.
+/// Largest |y| and |z| of a profile point (m): a profile is a few hundred millimetres wide,
+/// so a point metres away is a unit mistake (or would overflow the chord lengths).
+inline constexpr double max_profile_coordinate = 1.0;
+
+/// Reads a SIMPACK profile (recognised by `point.begin`) or plain two-column text.
 /// SIMPACK: lengths in the file's `units.len.f` (user units per metre; 1000 = mm);
 /// `shift.y/z` added, then `mirror.y/z` (negate), then `inversion` (reverse order); a
 /// non-zero `rotate` is rejected. Plain text: `y z` per line (a third column is ignored),
-/// `#` or `!` comments, lengths in `plain_length_unit` metres (default mm).
-/// @throws fastnorm::invalid_argument naming the file and line
-inline ProfilePoints read_profile_file(const std::string& path, double plain_length_unit = 1e-3) {
-  std::ifstream in(path);
-  FASTNORM_CHECK(in.good(), "cannot open profile file '" + path + "'");
+/// `#` or `!` comments, lengths in `plain_length_unit` metres (default mm). Every point
+/// must lie within max_profile_coordinate (1 m) of the origin once in metres.
+/// @param source_name used in error messages (a file name)
+/// @throws fastnorm::invalid_argument naming the source and line
+inline ProfilePoints read_profile(std::istream& in, const std::string& source_name, double plain_length_unit = 1e-3) {
+  fastnorm::detail::check_positive(plain_length_unit, "read_profile: plain_length_unit (m)");
   std::vector<std::string> lines;
   for (std::string line; std::getline(in, line);) lines.push_back(line);
   auto fail = [&](std::size_t line, const std::string& what) {
-    throw invalid_argument("fastnorm: " + path + ":" + std::to_string(line + 1) + ": " + what);
+    throw invalid_argument("fastnorm: " + source_name + ":" + std::to_string(line + 1) + ": " + what);
   };
   auto strip = [](std::string line) {
     const auto comment = line.find_first_of("!#");
@@ -84,15 +90,29 @@ inline ProfilePoints read_profile_file(const std::string& path, double plain_len
     std::istringstream numbers(text);
     double y = 0, z = 0;
     if (!(numbers >> y >> z) || !std::isfinite(y) || !std::isfinite(z)) fail(n, "expected two finite numbers 'y z'");
-    points.y.push_back((mirror_y ? -1 : 1) * (y + shift_y) * unit);
-    points.z.push_back((mirror_z ? -1 : 1) * (z + shift_z) * unit);
+    const double y_metres = (mirror_y ? -1 : 1) * (y + shift_y) * unit;
+    const double z_metres = (mirror_z ? -1 : 1) * (z + shift_z) * unit;
+    if (!(std::abs(y_metres) <= max_profile_coordinate && std::abs(z_metres) <= max_profile_coordinate)) {
+      fail(n, "point (" + fastnorm::detail::to_text(y_metres) + ", " + fastnorm::detail::to_text(z_metres) +
+                  ") m lies more than 1 m from the origin (wrong length unit?)");
+    }
+    points.y.push_back(y_metres);
+    points.z.push_back(z_metres);
   }
   if (inversion) {
     std::reverse(points.y.begin(), points.y.end());
     std::reverse(points.z.begin(), points.z.end());
   }
-  FASTNORM_CHECK(points.y.size() >= 3, "profile file '" + path + "' has fewer than 3 points");
+  FASTNORM_CHECK(points.y.size() >= 3, "profile '" + source_name + "' has fewer than 3 points");
   return points;
+}
+
+/// read_profile from a file.
+/// @throws fastnorm::invalid_argument if the file cannot be opened, or naming its line
+inline ProfilePoints read_profile_file(const std::string& path, double plain_length_unit = 1e-3) {
+  std::ifstream in(path);
+  FASTNORM_CHECK(in.good(), "cannot open profile file '" + path + "'");
+  return read_profile(in, path, plain_length_unit);
 }
 
 namespace detail {
@@ -173,13 +193,17 @@ inline std::vector<double> chord_lengths(const ProfilePoints& points) {
 
 }  // namespace detail
 
+/// Smallest distance between consecutive profile points (m) that SplineProfile accepts.
+inline constexpr double min_point_spacing = 1e-9;
+
 /// A smooth profile z(y) through measured points: y(s) and z(s) are cubic splines over
 /// the chord length s, so steep and vertical stretches (a flange back) are followed as
 /// well as flat ones; value and slope are continuous, so contact angles do not jump at
 /// the points as a polyline's would.
 class SplineProfile {
  public:
-  /// @param points at least 3, y strictly monotone along the profile (either direction)
+  /// @param points at least 3, y strictly monotone along the profile (either direction),
+  ///        consecutive points at least min_point_spacing (1 nm) apart
   /// @throws fastnorm::invalid_argument otherwise
   explicit SplineProfile(ProfilePoints points) : SplineProfile(ordered(std::move(points)), true) {}
 
@@ -227,6 +251,10 @@ class SplineProfile {
     for (std::size_t k = 1; k < points.y.size(); ++k) {
       FASTNORM_CHECK(points.y[k] > points.y[k - 1],
                      fastnorm::detail::describe("SplineProfile: y must be strictly monotone at point", k));
+      // Knots much closer make the spline's second derivatives overflow (a fuzzed profile
+      // with points 5e-77 m apart did); the MBench rail file starts with points 51 nm apart.
+      FASTNORM_CHECK(std::hypot(points.y[k] - points.y[k - 1], points.z[k] - points.z[k - 1]) >= min_point_spacing,
+                     fastnorm::detail::describe("SplineProfile: points closer than 1 nm, at point", k));
     }
     return points;
   }

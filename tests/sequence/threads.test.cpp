@@ -1,0 +1,51 @@
+// `solve(h, loading)` is const and thread-safe (docs/architecture.md §2): threads sharing
+// one solver object get the answers of one call after another, bit for bit. CI also runs
+// this under ThreadSanitizer (.ci/run), which reports any unsynchronised access.
+#include <catch2/catch.hpp>
+#include <fastnorm/any_solver.hpp>
+#include <fastnorm/hertz.hpp>
+
+#include <thread>
+#include <vector>
+
+TEST_CASE("Threads sharing one solver get the answers of serial calls", "[sequence][threads]") {
+  const fastnorm::Material<> steel(2.1e11, 0.3);
+  const auto hertz = fastnorm::hertz_from_force(0.3, 0.2, steel.combined_modulus(), 5e4);
+  const auto grid = fastnorm::hertz_grid(hertz, 16, 1.4);
+  std::vector<Eigen::VectorXd> problems;
+  for (int n = 0; n < 8; ++n) {  // tilted indenters of different depths
+    Eigen::VectorXd h = fastnorm::hertz_undeformed_distance(grid, 0.3, 0.2);
+    for (Eigen::Index k = 0; k < grid.size(); ++k) h(k) += 2e-4 * n * grid.y_of(k) - 2e-6 * (n % 3);
+    problems.push_back(h);
+  }
+  const int thread_count = 4;
+  for (const char* name : {"norm", "cg", "elliptic", "polynomial-edge:4:1"}) {
+    const fastnorm::AnySolver<> solver(name, grid, steel);
+    for (const auto loading : {fastnorm::Loading<>::approach(), fastnorm::Loading<>::force(5e4)}) {
+      std::vector<fastnorm::Solution<>> serial;
+      for (const auto& h : problems) serial.push_back(solver.solve(h, loading));
+      // Every thread solves every problem, starting at a different one.
+      std::vector<std::vector<fastnorm::Solution<>>> parallel(thread_count);
+      std::vector<std::thread> threads;
+      for (int t = 0; t < thread_count; ++t) {
+        threads.emplace_back([&, t] {
+          for (std::size_t n = 0; n < problems.size(); ++n) {
+            parallel[t].push_back(solver.solve(problems[(n + t) % problems.size()], loading));
+          }
+        });
+      }
+      for (auto& thread : threads) thread.join();
+      for (int t = 0; t < thread_count; ++t) {
+        for (std::size_t n = 0; n < problems.size(); ++n) {
+          const auto& expected = serial[(n + t) % problems.size()];
+          const auto& got = parallel[t][n];
+          INFO(name << ", thread " << t << ", problem " << (n + t) % problems.size());
+          REQUIRE(got.status == expected.status);
+          CHECK(got.pressure == expected.pressure);
+          CHECK(got.approach == expected.approach);
+          CHECK(got.iterations == expected.iterations);
+        }
+      }
+    }
+  }
+}
