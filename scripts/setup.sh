@@ -4,7 +4,7 @@
 set -euo pipefail
 
 fastnorm_root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
-fastnorm_packages=(cmake g++ libeigen3-dev catch2)
+fastnorm_packages=(cmake g++ gfortran libeigen3-dev catch2)
 
 fastnorm_install_packages() {
   local missing=()

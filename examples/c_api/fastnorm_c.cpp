@@ -1,0 +1,431 @@
+// The C API (fastnorm_c.h) over the header-only library: each entry point checks its
+// pointers, calls the C++ code, and turns every exception into a return code and a
+// per-thread message (docs/bindings.md).
+#include "fastnorm_c.h"
+
+#include <fastnorm/any_solver.hpp>
+#include <fastnorm/case_file.hpp>
+#include <fastnorm/version.hpp>
+#include <fastnorm/wheelrail.hpp>
+
+#include <array>
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <new>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace wr = fastnorm::wheelrail;
+
+struct fastnorm_solver {
+  fastnorm::AnySolver<double> solver;
+  fastnorm::Solution<double> last_next;  // the last solve_next's answer, for the stiffness
+};
+
+struct fastnorm_case {
+  fastnorm::Case<double> problem;
+};
+
+struct fastnorm_wheelset {
+  // The model refers to track and wheelset: built here, never copied or moved.
+  fastnorm_wheelset(wr::Track track_value, wr::Wheelset wheelset_value, wr::WheelsetContactOptions contact)
+      : track(std::move(track_value)), wheelset(std::move(wheelset_value)), options(std::move(contact)),
+        model(track, wheelset, options) {}
+  fastnorm_wheelset(const fastnorm_wheelset&) = delete;
+  fastnorm_wheelset& operator=(const fastnorm_wheelset&) = delete;
+
+  wr::Track track;
+  wr::Wheelset wheelset;
+  wr::WheelsetContactOptions options;
+  wr::WheelsetContact<> model;
+  std::optional<wr::Equilibrium> equilibrium;  // the last equilibrium, when it was the last call
+  std::array<std::vector<const wr::PatchContact*>, 2> patches;  // what fastnorm_wheelset_patch reads
+};
+
+namespace {
+
+thread_local std::string last_error;
+
+// Runs `body`, turning exceptions into a code and this thread's message.
+template <typename Body>
+int guarded(const char* function, Body&& body) {
+  try {
+    body();
+    return FASTNORM_OK;
+  } catch (const fastnorm::invalid_argument& error) {
+    last_error = std::string(function) + ": " + error.what();
+    return FASTNORM_ERROR_ARGUMENT;
+  } catch (const std::bad_alloc&) {
+    last_error = std::string(function) + ": out of memory";
+    return FASTNORM_ERROR_MEMORY;
+  } catch (const std::exception& error) {
+    last_error = std::string(function) + ": internal error: " + error.what();
+    return FASTNORM_ERROR_INTERNAL;
+  } catch (...) {
+    last_error = std::string(function) + ": internal error";
+    return FASTNORM_ERROR_INTERNAL;
+  }
+}
+
+void require_pointer(const void* pointer, const char* name) {
+  if (!pointer) throw fastnorm::invalid_argument(std::string("fastnorm: ") + name + " must not be NULL");
+}
+
+fastnorm::Grid<double> grid_of(const fastnorm_grid* grid) {
+  require_pointer(grid, "grid");
+  return {grid->mx, grid->my, grid->dx, grid->dy, grid->x0, grid->y0};
+}
+
+fastnorm_grid grid_to_c(const fastnorm::Grid<double>& grid) {
+  return {static_cast<int>(grid.mx()), static_cast<int>(grid.my()), grid.dx(), grid.dy(), grid.x0(), grid.y0()};
+}
+
+fastnorm::Material<double> material_of(const fastnorm_material* material) {
+  require_pointer(material, "material");
+  return {material->young_modulus_1, material->poisson_ratio_1, material->young_modulus_2, material->poisson_ratio_2};
+}
+
+fastnorm_result result_to_c(const fastnorm::Solution<double>& solution) {
+  fastnorm_result result{};
+  result.status = static_cast<int>(solution.status);
+  result.iterations = solution.iterations;
+  result.contact_count = static_cast<int>(solution.contact_count());
+  result.at_edge = solution.at_edge ? 1 : 0;
+  result.normal_force = solution.normal_force;
+  result.approach = solution.approach;
+  result.residual = solution.residual;
+  return result;
+}
+
+// Solves with `run` and copies the answer out; returns it.
+template <typename Run>
+fastnorm::Solution<double> solve_into(fastnorm_solver* solver, const double* h, double* pressure,
+                                      fastnorm_result* result, Run run) {
+  require_pointer(solver, "solver");
+  require_pointer(h, "h");
+  require_pointer(pressure, "pressure");
+  require_pointer(result, "result");
+  const Eigen::Index size = solver->solver.grid().size();
+  auto solution = run(Eigen::Map<const Eigen::VectorXd>(h, size));
+  Eigen::Map<Eigen::VectorXd>(pressure, size) = solution.pressure;
+  *result = result_to_c(solution);
+  return solution;
+}
+
+fastnorm::Loading<double> loading_of(double normal_force) {
+  return normal_force > 0 ? fastnorm::Loading<double>::force(normal_force) : fastnorm::Loading<double>::approach();
+}
+
+const wr::PatchContact& patch_of(const fastnorm_wheelset* model, int wheel, int patch) {
+  require_pointer(model, "model");
+  FASTNORM_CHECK(wheel == 0 || wheel == 1, fastnorm::detail::describe("wheel must be 0 (left) or 1 (right)", wheel));
+  const auto& patches = model->patches[static_cast<std::size_t>(wheel)];
+  FASTNORM_CHECK(patch >= 0 && static_cast<std::size_t>(patch) < patches.size(),
+                 fastnorm::detail::describe("patch must lie in [0, patch count)", patch));
+  return *patches[static_cast<std::size_t>(patch)];
+}
+
+void copy3(const Eigen::Vector3d& from, double* to) {
+  for (int k = 0; k < 3; ++k) to[k] = from(k);
+}
+
+wr::ProfileCurve profile_or(const char* path, wr::ProfileCurve closed_form) {
+  return path ? wr::spline_curve(wr::SplineProfile(wr::read_profile_file(path))) : closed_form;
+}
+
+// The C codes are the C++ enumerators' values.
+static_assert(static_cast<int>(fastnorm::Status::not_solved) == FASTNORM_NOT_SOLVED &&
+              static_cast<int>(fastnorm::Status::converged) == FASTNORM_CONVERGED &&
+              static_cast<int>(fastnorm::Status::no_contact) == FASTNORM_NO_CONTACT &&
+              static_cast<int>(fastnorm::Status::iteration_limit) == FASTNORM_ITERATION_LIMIT &&
+              static_cast<int>(fastnorm::Status::cycled) == FASTNORM_CYCLED &&
+              static_cast<int>(fastnorm::Status::numerical_issue) == FASTNORM_NUMERICAL_ISSUE);
+static_assert(static_cast<int>(wr::EquilibriumStatus::converged) == FASTNORM_EQUILIBRIUM_CONVERGED &&
+              static_cast<int>(wr::EquilibriumStatus::lost_contact) == FASTNORM_EQUILIBRIUM_LOST_CONTACT &&
+              static_cast<int>(wr::EquilibriumStatus::not_converged) == FASTNORM_EQUILIBRIUM_NOT_CONVERGED &&
+              static_cast<int>(wr::EquilibriumStatus::solver_failed) == FASTNORM_EQUILIBRIUM_SOLVER_FAILED &&
+              static_cast<int>(wr::EquilibriumStatus::flange_climb) == FASTNORM_EQUILIBRIUM_FLANGE_CLIMB);
+
+// The taping lines 65 mm wider than the gauge, as 1500 mm over 1435 mm (fastnorm-wheelrail).
+constexpr double taping_lines_over_gauge = 0.065;
+
+}  // namespace
+
+extern "C" {
+
+const char* fastnorm_last_error(void) { return last_error.c_str(); }
+
+const char* fastnorm_status_name(int status) {
+  if (status < FASTNORM_NOT_SOLVED || status > FASTNORM_NUMERICAL_ISSUE) return "unknown";
+  return fastnorm::to_string(static_cast<fastnorm::Status>(status));
+}
+
+#define FASTNORM_C_TEXT(value) #value
+#define FASTNORM_C_VERSION(major, minor, patch) FASTNORM_C_TEXT(major) "." FASTNORM_C_TEXT(minor) "." FASTNORM_C_TEXT(patch)
+const char* fastnorm_version(void) {
+  return FASTNORM_C_VERSION(FASTNORM_VERSION_MAJOR, FASTNORM_VERSION_MINOR, FASTNORM_VERSION_PATCH);
+}
+
+int fastnorm_solver_create(const char* name, const fastnorm_grid* grid, const fastnorm_material* material,
+                           const fastnorm_solver_options* options, fastnorm_solver** solver) {
+  return guarded("fastnorm_solver_create", [&] {
+    require_pointer(name, "name");
+    require_pointer(solver, "solver");
+    *solver = nullptr;
+    auto spec = fastnorm::SolverSpec<double>::parse(name);
+    if (options) {
+      FASTNORM_CHECK(options->max_iterations >= 0,
+                     fastnorm::detail::describe("options.max_iterations must be >= 0", options->max_iterations));
+      FASTNORM_CHECK(std::isfinite(options->tolerance) && options->tolerance >= 0,
+                     fastnorm::detail::describe("options.tolerance must be >= 0", options->tolerance));
+      if (options->max_iterations > 0) spec.active_set.max_iterations = spec.cg.max_iterations = options->max_iterations;
+      if (options->tolerance > 0) spec.cg.tolerance = options->tolerance;
+    }
+    *solver = new fastnorm_solver{fastnorm::AnySolver<double>(spec, grid_of(grid), material_of(material)), {}};
+  });
+}
+
+void fastnorm_solver_destroy(fastnorm_solver* solver) { delete solver; }
+
+int fastnorm_solve_approach(fastnorm_solver* solver, const double* h, double* pressure, fastnorm_result* result) {
+  return guarded("fastnorm_solve_approach", [&] {
+    solve_into(solver, h, pressure, result,
+               [&](const auto& gap) { return solver->solver.solve(gap, fastnorm::Loading<double>::approach()); });
+  });
+}
+
+int fastnorm_solve_force(fastnorm_solver* solver, const double* h, double normal_force, double* pressure,
+                         fastnorm_result* result) {
+  return guarded("fastnorm_solve_force", [&] {
+    const auto loading = fastnorm::Loading<double>::force(normal_force);
+    solve_into(solver, h, pressure, result, [&](const auto& gap) { return solver->solver.solve(gap, loading); });
+  });
+}
+
+int fastnorm_solve_next(fastnorm_solver* solver, const double* h, double normal_force, double* pressure,
+                        fastnorm_result* result) {
+  return guarded("fastnorm_solve_next", [&] {
+    const auto loading = loading_of(normal_force);
+    solver->last_next =
+        solve_into(solver, h, pressure, result, [&](const auto& gap) { return solver->solver.solve_next(gap, loading); });
+  });
+}
+
+int fastnorm_normal_stiffness(fastnorm_solver* solver, double* stiffness) {
+  return guarded("fastnorm_normal_stiffness", [&] {
+    require_pointer(solver, "solver");
+    require_pointer(stiffness, "stiffness");
+    FASTNORM_CHECK(solver->last_next.status != fastnorm::Status::not_solved, "no solve_next to take the stiffness of");
+    *stiffness = solver->solver.normal_stiffness(solver->last_next, solver->solver.workspace());
+  });
+}
+
+int fastnorm_case_read(const char* path, fastnorm_case** problem) {
+  return guarded("fastnorm_case_read", [&] {
+    require_pointer(path, "path");
+    require_pointer(problem, "problem");
+    *problem = nullptr;
+    *problem = new fastnorm_case{fastnorm::read_case_file<double>(path)};
+  });
+}
+
+void fastnorm_case_destroy(fastnorm_case* problem) { delete problem; }
+
+int fastnorm_case_info(const fastnorm_case* problem, fastnorm_grid* grid, fastnorm_material* material,
+                       int* force_control, double* control_value) {
+  return guarded("fastnorm_case_info", [&] {
+    require_pointer(problem, "problem");
+    const auto& stored = problem->problem;
+    if (grid) *grid = grid_to_c(stored.grid);
+    if (material) {
+      *material = {stored.material.young_modulus(1), stored.material.poisson_ratio(1),
+                   stored.material.young_modulus(2), stored.material.poisson_ratio(2)};
+    }
+    const bool by_force = stored.loading.control == fastnorm::Control::force;
+    if (force_control) *force_control = by_force ? 1 : 0;
+    if (control_value) *control_value = by_force ? stored.loading.normal_force : stored.stated_approach;
+  });
+}
+
+int fastnorm_case_undeformed_distance(const fastnorm_case* problem, double* h) {
+  return guarded("fastnorm_case_undeformed_distance", [&] {
+    require_pointer(problem, "problem");
+    require_pointer(h, "h");
+    const auto& values = problem->problem.undeformed_distance;
+    Eigen::Map<Eigen::VectorXd>(h, values.size()) = values;
+  });
+}
+
+int fastnorm_case_result(const fastnorm_case* problem, double* pressure, fastnorm_result* result) {
+  return guarded("fastnorm_case_result", [&] {
+    require_pointer(problem, "problem");
+    require_pointer(pressure, "pressure");
+    require_pointer(result, "result");
+    FASTNORM_CHECK(problem->problem.result.has_value(), "the case has no stored solution");
+    const auto& stored = *problem->problem.result;
+    Eigen::Map<Eigen::VectorXd>(pressure, stored.pressure.size()) = stored.pressure;
+    *result = fastnorm_result{};
+    result->normal_force = stored.normal_force;
+    result->approach = stored.approach;
+    result->contact_count = static_cast<int>(stored.contact_count);
+    result->iterations = stored.iterations;
+  });
+}
+
+int fastnorm_case_write(const char* path, const char* name, const fastnorm_grid* grid,
+                        const fastnorm_material* material, int force_control, double control_value, const double* h,
+                        const double* pressure, const fastnorm_result* result) {
+  return guarded("fastnorm_case_write", [&] {
+    require_pointer(path, "path");
+    require_pointer(name, "name");
+    require_pointer(h, "h");
+    FASTNORM_CHECK((pressure == nullptr) == (result == nullptr), "give both pressure and result, or neither");
+    const auto material_value = material_of(material);
+    FASTNORM_CHECK(material->young_modulus_1 == material->young_modulus_2 &&
+                       material->poisson_ratio_1 == material->poisson_ratio_2,
+                   "material: a .case file holds one material, body 2 must equal body 1");
+    const auto grid_value = grid_of(grid);
+    fastnorm::Case<double> problem{name, "fastnorm C API", grid_value, material_value,
+                                   fastnorm::Loading<double>::approach(), 0.0,
+                                   Eigen::Map<const Eigen::VectorXd>(h, grid_value.size()), std::nullopt};
+    if (force_control) {
+      problem.loading = fastnorm::Loading<double>::force(control_value);
+    } else {
+      problem.stated_approach = control_value;
+    }
+    if (result) {
+      fastnorm::CaseResult<double> stored;
+      stored.normal_force = result->normal_force;
+      stored.approach = result->approach;
+      stored.contact_count = result->contact_count;
+      stored.iterations = result->iterations;
+      stored.pressure = Eigen::Map<const Eigen::VectorXd>(pressure, grid_value.size());
+      problem.result = stored;
+    }
+    std::ofstream out(path);
+    FASTNORM_CHECK(out.good(), std::string("cannot open '") + path + "' for writing");
+    fastnorm::write_case(out, problem);
+    FASTNORM_CHECK(out.good(), std::string("writing '") + path + "' failed");
+  });
+}
+
+void fastnorm_wheelset_options_default(fastnorm_wheelset_options* options) {
+  if (!options) return;
+  *options = {};
+  options->solver = "norm";
+  options->nominal_radius = wr::WheelsetLayout().nominal_radius;
+  options->gauge = wr::TrackLayout().gauge;
+  options->cant = wr::TrackLayout().cant;
+  options->material = {2.1e11, 0.3, 2.1e11, 0.3};
+  options->elements = static_cast<int>(wr::PatchGridOptions().elements);
+  options->stiffness = 1;
+}
+
+int fastnorm_wheelset_create(const fastnorm_wheelset_options* options, fastnorm_wheelset** model) {
+  return guarded("fastnorm_wheelset_create", [&] {
+    require_pointer(options, "options");
+    require_pointer(model, "model");
+    *model = nullptr;
+    require_pointer(options->solver, "options.solver");
+    fastnorm::detail::check_positive(options->nominal_radius, "options.nominal_radius (m)");
+    fastnorm::detail::check_positive(options->gauge, "options.gauge (m)");
+    wr::TrackLayout layout;
+    layout.gauge = options->gauge;
+    layout.cant = options->cant;
+    wr::WheelsetLayout wheels;
+    wheels.nominal_radius = options->nominal_radius;
+    wheels.taping_line_half_distance = (options->gauge + taping_lines_over_gauge) / 2;
+    wr::WheelsetContactOptions contact;
+    contact.solver = fastnorm::SolverSpec<double>::parse(options->solver);
+    contact.material = material_of(&options->material);
+    contact.grid.elements = options->elements;
+    contact.stiffness = options->stiffness != 0;
+    *model = new fastnorm_wheelset(wr::Track(profile_or(options->rail_profile, wr::uic60_rail()), layout),
+                                   wr::Wheelset(profile_or(options->wheel_profile, wr::s1002_wheel()), wheels), contact);
+  });
+}
+
+void fastnorm_wheelset_destroy(fastnorm_wheelset* model) { delete model; }
+
+int fastnorm_wheelset_evaluate(fastnorm_wheelset* model, const fastnorm_pose* pose, double* force, double* moment) {
+  return guarded("fastnorm_wheelset_evaluate", [&] {
+    require_pointer(model, "model");
+    require_pointer(pose, "pose");
+    model->equilibrium.reset();
+    for (auto& patches : model->patches) patches.clear();
+    const auto& result = model->model.evaluate({pose->y, pose->z, pose->roll, pose->yaw});
+    for (std::size_t wheel = 0; wheel < 2; ++wheel) {
+      for (const auto& patch : result.wheels[wheel].patches) model->patches[wheel].push_back(&patch);
+    }
+    if (force) copy3(result.force, force);
+    if (moment) copy3(result.moment, moment);
+  });
+}
+
+int fastnorm_wheelset_patch_count(const fastnorm_wheelset* model, int wheel, int* count) {
+  return guarded("fastnorm_wheelset_patch_count", [&] {
+    require_pointer(model, "model");
+    require_pointer(count, "count");
+    FASTNORM_CHECK(wheel == 0 || wheel == 1, fastnorm::detail::describe("wheel must be 0 (left) or 1 (right)", wheel));
+    *count = static_cast<int>(model->patches[static_cast<std::size_t>(wheel)].size());
+  });
+}
+
+int fastnorm_wheelset_patch(const fastnorm_wheelset* model, int wheel, int patch, fastnorm_patch* out) {
+  return guarded("fastnorm_wheelset_patch", [&] {
+    require_pointer(out, "out");
+    const auto& contact = patch_of(model, wheel, patch);
+    fastnorm_patch value{};
+    value.status = static_cast<int>(contact.solution.status);
+    value.at_edge = contact.solution.at_edge ? 1 : 0;
+    value.flange_climb = model->wheelset.at_flange_climb(contact.profile_y) ? 1 : 0;
+    value.grid = grid_to_c(contact.patch.grid);
+    value.normal_force = contact.normal_force;
+    copy3(contact.force, value.force);
+    copy3(contact.moment, value.moment);
+    copy3(contact.centre, value.centre);
+    value.contact_angle = contact.contact_angle;
+    value.approach = contact.approach;
+    value.stiffness = contact.stiffness;
+    value.profile_y = contact.profile_y;
+    *out = value;
+  });
+}
+
+int fastnorm_wheelset_patch_pressure(const fastnorm_wheelset* model, int wheel, int patch, double* pressure) {
+  return guarded("fastnorm_wheelset_patch_pressure", [&] {
+    require_pointer(pressure, "pressure");
+    const auto& values = patch_of(model, wheel, patch).solution.pressure;
+    Eigen::Map<Eigen::VectorXd>(pressure, values.size()) = values;
+  });
+}
+
+int fastnorm_wheelset_equilibrium(fastnorm_wheelset* model, double load, double y, double yaw,
+                                  fastnorm_equilibrium* result) {
+  return guarded("fastnorm_wheelset_equilibrium", [&] {
+    require_pointer(model, "model");
+    require_pointer(result, "result");
+    wr::EquilibriumOptions options;
+    options.solver = model->options.solver;
+    options.grid = model->options.grid;
+    options.material = model->options.material;
+    model->equilibrium.reset();
+    for (auto& patches : model->patches) patches.clear();
+    model->equilibrium = wr::solve_equilibrium(model->track, model->wheelset, y, yaw, load, options);
+    const auto& found = *model->equilibrium;
+    // The equilibrium lists the left wheel's patches first; the left rail lies at y < 0.
+    for (const auto& patch : found.patches) model->patches[patch.centre.y() < 0 ? 0 : 1].push_back(&patch);
+    fastnorm_equilibrium value{};
+    value.status = static_cast<int>(found.status);
+    value.iterations = found.iterations;
+    value.pose = {found.pose.y, found.pose.z, found.pose.roll, found.pose.yaw};
+    value.vertical_force = found.vertical_force;
+    value.lateral_force = found.lateral_force;
+    for (std::size_t wheel = 0; wheel < 2; ++wheel) value.patch_count[wheel] = static_cast<int>(model->patches[wheel].size());
+    *result = value;
+  });
+}
+
+}  // extern "C"

@@ -1,0 +1,204 @@
+/* fastnorm_c.h: the C API of fastnorm (C99; docs/bindings.md).
+ *
+ * Every function returns an int status code, FASTNORM_OK (0) on success; on failure
+ * fastnorm_last_error() gives the message, kept per thread until the next failing call of
+ * that thread. No C++ exception crosses this interface. Units are SI: m, Pa, N, rad.
+ * Arrays over a grid hold element k = i + mx*j (i along x, the rolling direction).
+ * A handle may be used by one thread at a time; different handles by different threads
+ * at once. */
+#ifndef FASTNORM_C_H
+#define FASTNORM_C_H
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#if defined(_WIN32) && defined(FASTNORM_C_BUILDING)
+#define FASTNORM_C_API __declspec(dllexport)
+#elif defined(_WIN32)
+#define FASTNORM_C_API __declspec(dllimport)
+#else
+#define FASTNORM_C_API __attribute__((visibility("default")))
+#endif
+
+/* Return codes. */
+enum {
+  FASTNORM_OK = 0,
+  FASTNORM_ERROR_ARGUMENT = 1, /* bad input: the message names the argument */
+  FASTNORM_ERROR_MEMORY = 2,   /* out of memory */
+  FASTNORM_ERROR_INTERNAL = 3  /* anything else: a bug, please report the message */
+};
+
+/* How a solve ended (fastnorm::Status). */
+enum {
+  FASTNORM_NOT_SOLVED = 0,
+  FASTNORM_CONVERGED = 1,
+  FASTNORM_NO_CONTACT = 2,
+  FASTNORM_ITERATION_LIMIT = 3,
+  FASTNORM_CYCLED = 4, /* reduced bases: the last set with positive pressures, usable */
+  FASTNORM_NUMERICAL_ISSUE = 5
+};
+
+/* The message of this thread's last failing call ("" if none). */
+FASTNORM_C_API const char* fastnorm_last_error(void);
+/* "converged", "no contact", ... for a FASTNORM_* status; "unknown" otherwise. */
+FASTNORM_C_API const char* fastnorm_status_name(int status);
+/* The library version, "major.minor.patch". */
+FASTNORM_C_API const char* fastnorm_version(void);
+
+/* A regular grid of mx x my rectangles dx x dy (m); (x0, y0) the centre of element 0. */
+typedef struct fastnorm_grid {
+  int mx, my;
+  double dx, dy, x0, y0;
+} fastnorm_grid;
+
+/* Elastic constants of body 1 (wheel) and body 2 (rail): E in Pa, nu in (-1, 0.5]. */
+typedef struct fastnorm_material {
+  double young_modulus_1, poisson_ratio_1, young_modulus_2, poisson_ratio_2;
+} fastnorm_material;
+
+/* What a solve returns besides the pressures. */
+typedef struct fastnorm_result {
+  int status;          /* FASTNORM_CONVERGED, ... */
+  int iterations;      /* active-set solves or CG iterations */
+  int contact_count;   /* elements in contact */
+  int at_edge;         /* 1: contact touches the grid boundary (make the grid larger) */
+  double normal_force; /* Fn (N) */
+  double approach;     /* rigid approach found in force control, 0 in approach control (m) */
+  double residual;     /* the solver's own measure of the Signorini conditions (relative) */
+} fastnorm_result;
+
+/* Solver settings; 0 (or 0.0) in a field keeps the solver's default. */
+typedef struct fastnorm_solver_options {
+  int max_iterations;  /* active-set solves (default 200) or CG iterations (5000) */
+  double tolerance;    /* CG: complementarity tolerance (default 1e-9) */
+} fastnorm_solver_options;
+
+typedef struct fastnorm_solver fastnorm_solver;
+
+/* A solver on a grid and material. name: "norm", "cg", "elliptic", "polynomial[:G]",
+ * "elliptic-edge[:K]", "polynomial-edge[:G[:K]]". options may be NULL. */
+FASTNORM_C_API int fastnorm_solver_create(const char* name, const fastnorm_grid* grid, const fastnorm_material* material,
+                                          const fastnorm_solver_options* options, fastnorm_solver** solver);
+/* NULL is allowed. */
+FASTNORM_C_API void fastnorm_solver_destroy(fastnorm_solver* solver);
+
+/* Solves with h, the undeformed distance (m, + = gap, mx*my values). Approach control: h
+ * already holds the approach. Force control: Fn (N) > 0 is met by a rigid approach.
+ * pressure: mx*my values (Pa), written. A cold solve: its answer does not depend on what
+ * the handle solved before. */
+FASTNORM_C_API int fastnorm_solve_approach(fastnorm_solver* solver, const double* h, double* pressure,
+                                           fastnorm_result* result);
+FASTNORM_C_API int fastnorm_solve_force(fastnorm_solver* solver, const double* h, double normal_force,
+                                        double* pressure, fastnorm_result* result);
+/* The next problem of a sequence: starts from the contact set of the handle's previous
+ * solve_next (NORM and CG give the cold answer, sooner; a reduced solver's may differ
+ * within its accuracy). normal_force <= 0 means approach control. */
+FASTNORM_C_API int fastnorm_solve_next(fastnorm_solver* solver, const double* h, double normal_force,
+                                       double* pressure, fastnorm_result* result);
+/* dFn/d(approach) (N/m) at the contact set of the handle's last solve_next. */
+FASTNORM_C_API int fastnorm_normal_stiffness(fastnorm_solver* solver, double* stiffness);
+
+/* .case files (docs/case-format.md). */
+typedef struct fastnorm_case fastnorm_case;
+
+FASTNORM_C_API int fastnorm_case_read(const char* path, fastnorm_case** problem);
+FASTNORM_C_API void fastnorm_case_destroy(fastnorm_case* problem);
+/* Grid, material (body 2 = body 1), control: force_control 1 with its Fn (N), or 0 with the
+ * stated approach (m). Any output pointer may be NULL. */
+FASTNORM_C_API int fastnorm_case_info(const fastnorm_case* problem, fastnorm_grid* grid, fastnorm_material* material,
+                                      int* force_control, double* control_value);
+/* h: mx*my values (m), written. */
+FASTNORM_C_API int fastnorm_case_undeformed_distance(const fastnorm_case* problem, double* h);
+/* The stored solution part, if the case has one (else FASTNORM_ERROR_ARGUMENT): pressure
+ * mx*my values (Pa), written; result's normal_force, approach, contact_count and
+ * iterations filled, status FASTNORM_NOT_SOLVED (a file does not store it). */
+FASTNORM_C_API int fastnorm_case_result(const fastnorm_case* problem, double* pressure, fastnorm_result* result);
+/* Writes a case; pressure and result may both be NULL (no solution part) or both given. */
+FASTNORM_C_API int fastnorm_case_write(const char* path, const char* name, const fastnorm_grid* grid,
+                                       const fastnorm_material* material, int force_control, double control_value,
+                                       const double* h, const double* pressure, const fastnorm_result* result);
+
+/* The wheelset contact model of the time loop (docs/wheel-rail.md §9) and the static
+ * equilibrium of a loaded wheelset (§5). Wheels: 0 left, 1 right. */
+typedef struct fastnorm_wheelset_options {
+  const char* solver;         /* patch solver, as for fastnorm_solver_create */
+  const char* wheel_profile;  /* profile file (SIMPACK, or two columns in mm); NULL: S1002 */
+  const char* rail_profile;   /* the same; NULL: UIC60 (MBench) */
+  double nominal_radius;      /* wheel rolling radius at the taping line (m) */
+  double gauge;               /* track gauge (m); the taping lines are 65 mm wider */
+  double cant;                /* rail inclination towards the track centre (rad) */
+  fastnorm_material material; /* wheel (body 1) and rail (body 2) */
+  int elements;               /* elements across the largest patch, in [4, 2000] */
+  int stiffness;              /* 1: each patch's dFn/d(approach) as well; 0: not */
+} fastnorm_wheelset_options;
+
+/* Fills the defaults: "norm", S1002 on UIC60, radius 0.45 m, gauge 1.435 m, cant 1/40,
+ * steel (E 210 GPa, nu 0.3) for both bodies, 60 elements, stiffness on. Change fields after. */
+FASTNORM_C_API void fastnorm_wheelset_options_default(fastnorm_wheelset_options* options);
+
+/* The wheelset's position on the track (m, rad): lateral shift y, vertical z (down),
+ * roll about x, yaw about the rolled z axis. */
+typedef struct fastnorm_pose {
+  double y, z, roll, yaw;
+} fastnorm_pose;
+
+/* One contact patch. Track frame: x forward, y right, z down. */
+typedef struct fastnorm_patch {
+  int status;               /* of its solve, FASTNORM_CONVERGED, ... */
+  int at_edge;              /* contact touches its grid's boundary */
+  int flange_climb;         /* the reference point lies on the flange's steepest flank or beyond */
+  fastnorm_grid grid;       /* the patch's grid in its tangent plane */
+  double normal_force;      /* Fn (N) */
+  double force[3];          /* Fn along the inward normal, track frame (N) */
+  double moment[3];         /* about the wheelset centre (N m) */
+  double centre[3];         /* contact reference point (m) */
+  double contact_angle;     /* of the normal from the vertical, + towards the track centre (rad) */
+  double approach;          /* rigid interpenetration (m) */
+  double stiffness;         /* dFn/d(approach) (N/m); NaN when not asked for */
+  double profile_y;         /* wheel profile coordinate of the reference point (m) */
+} fastnorm_patch;
+
+typedef struct fastnorm_wheelset fastnorm_wheelset;
+
+FASTNORM_C_API int fastnorm_wheelset_create(const fastnorm_wheelset_options* options, fastnorm_wheelset** model);
+FASTNORM_C_API void fastnorm_wheelset_destroy(fastnorm_wheelset* model);
+/* Evaluates every wheel's contact at pose; force[3] and moment[3] (may be NULL) receive the
+ * totals on the wheelset (N, N m about its centre). The patches stay readable until the
+ * next evaluate. */
+FASTNORM_C_API int fastnorm_wheelset_evaluate(fastnorm_wheelset* model, const fastnorm_pose* pose, double* force,
+                                              double* moment);
+FASTNORM_C_API int fastnorm_wheelset_patch_count(const fastnorm_wheelset* model, int wheel, int* count);
+FASTNORM_C_API int fastnorm_wheelset_patch(const fastnorm_wheelset* model, int wheel, int patch, fastnorm_patch* out);
+/* The patch's pressures (Pa), grid.mx*grid.my values, written. */
+FASTNORM_C_API int fastnorm_wheelset_patch_pressure(const fastnorm_wheelset* model, int wheel, int patch,
+                                                    double* pressure);
+
+/* Static equilibrium: z and roll such that the rails carry load (N) at lateral shift y (m)
+ * and yaw (rad). */
+typedef struct fastnorm_equilibrium {
+  int status;             /* FASTNORM_EQUILIBRIUM_* */
+  int iterations;         /* contact evaluations */
+  fastnorm_pose pose;     /* z and roll found */
+  double vertical_force;  /* what the rails carry (N) */
+  double lateral_force;   /* lateral force needed to hold y (N) */
+  int patch_count[2];     /* patches per wheel at pose */
+} fastnorm_equilibrium;
+
+enum {
+  FASTNORM_EQUILIBRIUM_CONVERGED = 0,
+  FASTNORM_EQUILIBRIUM_LOST_CONTACT = 1,
+  FASTNORM_EQUILIBRIUM_NOT_CONVERGED = 2,
+  FASTNORM_EQUILIBRIUM_SOLVER_FAILED = 3,
+  FASTNORM_EQUILIBRIUM_FLANGE_CLIMB = 4
+};
+
+/* The equilibrium; the model then holds its patches (fastnorm_wheelset_patch reads them). */
+FASTNORM_C_API int fastnorm_wheelset_equilibrium(fastnorm_wheelset* model, double load, double y, double yaw,
+                                                 fastnorm_equilibrium* result);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* FASTNORM_C_H */
