@@ -130,6 +130,8 @@ static void bad_input_is_named(void) {
   expect_error(fastnorm_solve_approach(solver, h, pressure, &result), "undeformed_distance[17]");
   expect_error(fastnorm_solve_approach(solver, NULL, pressure, &result), "h must not be NULL");
   expect_error(fastnorm_solve_force(solver, h, -5.0, pressure, &result), "normal_force");
+  for (int k = 0; k < 64; ++k) h[k] = 1e-6;
+  expect_error(fastnorm_solve_next(solver, h, NAN, pressure, &result), "normal_force must be finite");
   fastnorm_solver_destroy(solver);
   fastnorm_case* problem = NULL;
   expect_error(fastnorm_case_read("/nonexistent/file.case", &problem), "/nonexistent/file.case");

@@ -114,7 +114,10 @@ fastnorm::Solution<double> solve_into(fastnorm_solver* solver, const double* h, 
   return solution;
 }
 
+// solve_next's loading: Fn > 0 force control, Fn <= 0 approach control, NaN or inf refused.
 fastnorm::Loading<double> loading_of(double normal_force) {
+  FASTNORM_CHECK(std::isfinite(normal_force),
+                 fastnorm::detail::describe("normal_force must be finite (N; <= 0 for approach control)", normal_force));
   return normal_force > 0 ? fastnorm::Loading<double>::force(normal_force) : fastnorm::Loading<double>::approach();
 }
 

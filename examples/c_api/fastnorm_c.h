@@ -93,7 +93,7 @@ FASTNORM_C_API int fastnorm_solve_force(fastnorm_solver* solver, const double* h
                                         double* pressure, fastnorm_result* result);
 /* The next problem of a sequence: starts from the contact set of the handle's previous
  * solve_next (NORM and CG give the cold answer, sooner; a reduced solver's may differ
- * within its accuracy). normal_force <= 0 means approach control. */
+ * within its accuracy). normal_force <= 0 means approach control; NaN or inf is refused. */
 FASTNORM_C_API int fastnorm_solve_next(fastnorm_solver* solver, const double* h, double normal_force,
                                        double* pressure, fastnorm_result* result);
 /* dFn/d(approach) (N/m) at the contact set of the handle's last solve_next. */
