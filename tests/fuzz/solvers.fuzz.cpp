@@ -94,8 +94,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* bytes, std::size_t siz
     for (Eigen::Index j = 0; j < my; ++j) {
       for (Eigen::Index i = 0; i < mx; ++i) {
         const double x = grid.x(i) - centre_x * 0.5 * double(mx) * dx, y = grid.y(j) - centre_y * 0.5 * double(my) * dy;
-        h(grid.index(i, j)) = x * x / (2 * radius_x) + y * y / (2 * radius_y) +
-                              wave_amplitude * std::sin(2 * pi * x / (wave_length * dx)) * std::cos(2 * pi * y / (wave_length * dy)) -
+        const double waviness = std::sin(2 * pi * x / (wave_length * dx)) * std::cos(2 * pi * y / (wave_length * dy));
+        h(grid.index(i, j)) = x * x / (2 * radius_x) + y * y / (2 * radius_y) + wave_amplitude * waviness -
                               (force_control ? 0.0 : approach);
       }
     }

@@ -7,12 +7,13 @@
 #include <fastnorm/norm_solver.hpp>
 
 #include <cmath>
-#include <cstdint>
 
 #include "support/random_gaps.hpp"
 #include "support/signorini.hpp"
 
 namespace {
+
+using fastnorm::test::GapChoice;
 
 const fastnorm::Material<> steel(2.1e11, 0.3);
 
@@ -27,11 +28,6 @@ Eigen::VectorXd mirrored(const fastnorm::Grid<>& grid, const Eigen::VectorXd& va
   return result;
 }
 
-struct Problem {
-  std::uint32_t seed;
-  Eigen::Index size;
-};
-
 /// NORM's force at the gap's approach δ0: forces up to it keep the contact inside the grid.
 double force_at_approach(const fastnorm::NormSolver<>& norm, const fastnorm::test::RandomGap& gap) {
   const auto solution = norm.solve((gap.unloaded.array() - gap.approach).matrix(), fastnorm::Loading<>::approach());
@@ -42,8 +38,9 @@ double force_at_approach(const fastnorm::NormSolver<>& norm, const fastnorm::tes
 }  // namespace
 
 TEST_CASE("NORM and CG satisfy the Signorini conditions on random gaps in both controls", "[norm][cg][properties]") {
-  const auto problem = GENERATE(Problem{1, 20}, Problem{2, 20}, Problem{3, 30}, Problem{4, 30}, Problem{5, 40}, Problem{10, 40},
-                                Problem{11, 50}, Problem{12, 50}, Problem{13, 60}, Problem{14, 60});
+  const auto problem = GENERATE(GapChoice{1, 20}, GapChoice{2, 20}, GapChoice{3, 30}, GapChoice{4, 30},
+                                GapChoice{5, 40}, GapChoice{10, 40}, GapChoice{11, 50}, GapChoice{12, 50},
+                                GapChoice{13, 60}, GapChoice{14, 60});
   const auto gap = fastnorm::test::random_gap(problem.seed, problem.size);
   const Eigen::VectorXd loaded = (gap.unloaded.array() - gap.approach).matrix();
   const fastnorm::NormSolver<> norm(gap.grid, steel);
@@ -75,7 +72,7 @@ TEST_CASE("NORM and CG satisfy the Signorini conditions on random gaps in both c
 }
 
 TEST_CASE("The force grows with the approach, and the approach with the force", "[norm][cg][properties]") {
-  const auto problem = GENERATE(Problem{6, 20}, Problem{7, 40}, Problem{15, 60});
+  const auto problem = GENERATE(GapChoice{6, 20}, GapChoice{7, 40}, GapChoice{15, 60});
   const auto gap = fastnorm::test::random_gap(problem.seed, problem.size);
   const fastnorm::NormSolver<> norm(gap.grid, steel);
   const fastnorm::CgSolver<> cg(gap.grid, steel);
@@ -109,7 +106,7 @@ TEST_CASE("The force grows with the approach, and the approach with the force", 
 }
 
 TEST_CASE("A mirrored gap gives the mirrored pressure", "[norm][cg][properties]") {
-  const auto problem = GENERATE(Problem{8, 20}, Problem{9, 30}, Problem{16, 60});
+  const auto problem = GENERATE(GapChoice{8, 20}, GapChoice{9, 30}, GapChoice{16, 60});
   const bool in_x = GENERATE(true, false);
   const auto control = GENERATE(fastnorm::Control::approach, fastnorm::Control::force);
   const auto gap = fastnorm::test::random_gap(problem.seed, problem.size);

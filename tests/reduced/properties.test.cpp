@@ -7,24 +7,20 @@
 #include <fastnorm/any_solver.hpp>
 
 #include <cmath>
-#include <cstdint>
 
 #include "support/random_gaps.hpp"
 
 namespace {
 
-const fastnorm::Material<> steel(2.1e11, 0.3);
+using fastnorm::test::GapChoice;
 
-struct Problem {
-  std::uint32_t seed;
-  Eigen::Index size;
-};
+const fastnorm::Material<> steel(2.1e11, 0.3);
 
 }  // namespace
 
 TEST_CASE("Reduced solvers on random gaps: no NaN, no negative force, an honest status", "[reduced][properties]") {
-  const auto problem = GENERATE(Problem{1, 20}, Problem{2, 20}, Problem{3, 30}, Problem{4, 30}, Problem{5, 40},
-                                Problem{10, 40}, Problem{11, 50}, Problem{13, 60});
+  const auto problem = GENERATE(GapChoice{1, 20}, GapChoice{2, 20}, GapChoice{3, 30}, GapChoice{4, 30}, GapChoice{5, 40},
+                                GapChoice{10, 40}, GapChoice{11, 50}, GapChoice{13, 60});
   const auto control = GENERATE(fastnorm::Control::approach, fastnorm::Control::force);
   const auto gap = fastnorm::test::random_gap(problem.seed, problem.size);
   const Eigen::VectorXd loaded = (gap.unloaded.array() - gap.approach).matrix();

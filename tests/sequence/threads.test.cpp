@@ -5,6 +5,7 @@
 #include <fastnorm/any_solver.hpp>
 #include <fastnorm/hertz.hpp>
 
+#include <cstddef>
 #include <thread>
 #include <vector>
 
@@ -18,7 +19,7 @@ TEST_CASE("Threads sharing one solver get the answers of serial calls", "[sequen
     for (Eigen::Index k = 0; k < grid.size(); ++k) h(k) += 2e-4 * n * grid.y_of(k) - 2e-6 * (n % 3);
     problems.push_back(h);
   }
-  const int thread_count = 4;
+  const std::size_t thread_count = 4;
   for (const char* name : {"norm", "cg", "elliptic", "polynomial-edge:4:1"}) {
     const fastnorm::AnySolver<> solver(name, grid, steel);
     for (const auto loading : {fastnorm::Loading<>::approach(), fastnorm::Loading<>::force(5e4)}) {
@@ -27,7 +28,7 @@ TEST_CASE("Threads sharing one solver get the answers of serial calls", "[sequen
       // Every thread solves every problem, starting at a different one.
       std::vector<std::vector<fastnorm::Solution<>>> parallel(thread_count);
       std::vector<std::thread> threads;
-      for (int t = 0; t < thread_count; ++t) {
+      for (std::size_t t = 0; t < thread_count; ++t) {
         threads.emplace_back([&, t] {
           for (std::size_t n = 0; n < problems.size(); ++n) {
             parallel[t].push_back(solver.solve(problems[(n + t) % problems.size()], loading));
@@ -35,7 +36,7 @@ TEST_CASE("Threads sharing one solver get the answers of serial calls", "[sequen
         });
       }
       for (auto& thread : threads) thread.join();
-      for (int t = 0; t < thread_count; ++t) {
+      for (std::size_t t = 0; t < thread_count; ++t) {
         for (std::size_t n = 0; n < problems.size(); ++n) {
           const auto& expected = serial[(n + t) % problems.size()];
           const auto& got = parallel[t][n];

@@ -14,6 +14,12 @@
 
 namespace fastnorm::test {
 
+/// Which random gap: the seed of its generator and its m × m size.
+struct GapChoice {
+  std::uint32_t seed;
+  Eigen::Index size;
+};
+
 struct RandomGap {
   fastnorm::Grid<> grid;
   Eigen::VectorXd unloaded;  ///< h0 (m): min h0 is 0 near the centre
