@@ -8,6 +8,8 @@
 #include <fastnorm/version.hpp>
 #include <fastnorm/wheelrail.hpp>
 
+#include "support/wheelset_setup.hpp"
+
 #include <array>
 #include <cmath>
 #include <fstream>
@@ -134,10 +136,6 @@ void copy3(const Eigen::Vector3d& from, double* to) {
   for (int k = 0; k < 3; ++k) to[k] = from(k);
 }
 
-wr::ProfileCurve profile_or(const char* path, wr::ProfileCurve closed_form) {
-  return path ? wr::spline_curve(wr::SplineProfile(wr::read_profile_file(path))) : closed_form;
-}
-
 // The C codes are the C++ enumerators' values.
 static_assert(static_cast<int>(fastnorm::Status::not_solved) == FASTNORM_NOT_SOLVED &&
               static_cast<int>(fastnorm::Status::converged) == FASTNORM_CONVERGED &&
@@ -150,9 +148,6 @@ static_assert(static_cast<int>(wr::EquilibriumStatus::converged) == FASTNORM_EQU
               static_cast<int>(wr::EquilibriumStatus::not_converged) == FASTNORM_EQUILIBRIUM_NOT_CONVERGED &&
               static_cast<int>(wr::EquilibriumStatus::solver_failed) == FASTNORM_EQUILIBRIUM_SOLVER_FAILED &&
               static_cast<int>(wr::EquilibriumStatus::flange_climb) == FASTNORM_EQUILIBRIUM_FLANGE_CLIMB);
-
-// The taping lines 65 mm wider than the gauge, as 1500 mm over 1435 mm (fastnorm-wheelrail).
-constexpr double taping_lines_over_gauge = 0.065;
 
 }  // namespace
 
@@ -334,19 +329,18 @@ int fastnorm_wheelset_create(const fastnorm_wheelset_options* options, fastnorm_
     require_pointer(options->solver, "options.solver");
     fastnorm::detail::check_positive(options->nominal_radius, "options.nominal_radius (m)");
     fastnorm::detail::check_positive(options->gauge, "options.gauge (m)");
-    wr::TrackLayout layout;
-    layout.gauge = options->gauge;
-    layout.cant = options->cant;
-    wr::WheelsetLayout wheels;
-    wheels.nominal_radius = options->nominal_radius;
-    wheels.taping_line_half_distance = (options->gauge + taping_lines_over_gauge) / 2;
+    fastnorm_example::WheelsetSetup setup;
+    setup.wheel_profile = options->wheel_profile ? options->wheel_profile : "";
+    setup.rail_profile = options->rail_profile ? options->rail_profile : "";
+    setup.nominal_radius = options->nominal_radius;
+    setup.gauge = options->gauge;
+    setup.cant = options->cant;
     wr::WheelsetContactOptions contact;
     contact.solver = fastnorm::SolverSpec<double>::parse(options->solver);
     contact.material = material_of(&options->material);
     contact.grid.elements = options->elements;
     contact.stiffness = options->stiffness != 0;
-    *model = new fastnorm_wheelset(wr::Track(profile_or(options->rail_profile, wr::uic60_rail()), layout),
-                                   wr::Wheelset(profile_or(options->wheel_profile, wr::s1002_wheel()), wheels), contact);
+    *model = new fastnorm_wheelset(fastnorm_example::track_of(setup), fastnorm_example::wheelset_of(setup), contact);
   });
 }
 
@@ -410,16 +404,12 @@ int fastnorm_wheelset_equilibrium(fastnorm_wheelset* model, double load, double 
   return guarded("fastnorm_wheelset_equilibrium", [&] {
     require_pointer(model, "model");
     require_pointer(result, "result");
-    wr::EquilibriumOptions options;
-    options.solver = model->options.solver;
-    options.grid = model->options.grid;
-    options.material = model->options.material;
     model->equilibrium.reset();
     for (auto& patches : model->patches) patches.clear();
-    model->equilibrium = wr::solve_equilibrium(model->track, model->wheelset, y, yaw, load, options);
+    model->equilibrium = wr::solve_equilibrium(model->track, model->wheelset, y, yaw, load,
+                                               fastnorm_example::equilibrium_options_of(model->options));
     const auto& found = *model->equilibrium;
-    // The equilibrium lists the left wheel's patches first; the left rail lies at y < 0.
-    for (const auto& patch : found.patches) model->patches[patch.centre.y() < 0 ? 0 : 1].push_back(&patch);
+    for (const auto& patch : found.patches) model->patches[fastnorm_example::wheel_index_of(patch)].push_back(&patch);
     fastnorm_equilibrium value{};
     value.status = static_cast<int>(found.status);
     value.iterations = found.iterations;

@@ -123,8 +123,8 @@ FASTNORM_C_API int fastnorm_case_write(const char* path, const char* name, const
  * equilibrium of a loaded wheelset (§5). Wheels: 0 left, 1 right. */
 typedef struct fastnorm_wheelset_options {
   const char* solver;         /* patch solver, as for fastnorm_solver_create */
-  const char* wheel_profile;  /* profile file (SIMPACK, or two columns in mm); NULL: S1002 */
-  const char* rail_profile;   /* the same; NULL: UIC60 (MBench) */
+  const char* wheel_profile;  /* profile file (SIMPACK, or two columns in mm); NULL or "": S1002 */
+  const char* rail_profile;   /* the same; NULL or "": UIC60 (MBench) */
   double nominal_radius;      /* wheel rolling radius at the taping line (m) */
   double gauge;               /* track gauge (m); the taping lines are 65 mm wider */
   double cant;                /* rail inclination towards the track centre (rad) */

@@ -42,6 +42,7 @@
 #include <vector>
 
 #include "support/arguments.hpp"
+#include "support/wheelset_setup.hpp"
 #include "svg.hpp"
 
 namespace {
@@ -127,28 +128,20 @@ fastnorm::Material<double> material_of(const fastnorm_example::CommandLine& line
   return {wheel_young * 1e9, a.poisson, rail_young * 1e9, rail_poisson};
 }
 
-wr::ProfileCurve measured_or(const std::string& path, wr::ProfileCurve closed_form) {
-  return path.empty() ? closed_form : wr::spline_curve(wr::SplineProfile(wr::read_profile_file(path)));
-}
-
 // The track and wheelset of the command line, with the closed-form profiles by default.
 struct Setup {
   wr::Track track;
   wr::Wheelset wheelset;
 };
 
-// The taping lines 65 mm wider than the gauge, as 1500 mm over 1435 mm.
-constexpr double taping_lines_over_gauge_mm = 65;
-
 Setup setup_of(const Arguments& a) {
-  wr::TrackLayout layout;
-  layout.cant = a.cant;
-  layout.gauge = a.gauge_mm * 1e-3;
-  wr::WheelsetLayout wheels;
-  wheels.nominal_radius = a.radius_mm * 1e-3;
-  wheels.taping_line_half_distance = (a.gauge_mm + taping_lines_over_gauge_mm) / 2 * 1e-3;
-  return {wr::Track(measured_or(a.rail_profile, wr::uic60_rail()), layout),
-          wr::Wheelset(measured_or(a.wheel_profile, wr::s1002_wheel()), wheels)};
+  fastnorm_example::WheelsetSetup setup;
+  setup.wheel_profile = a.wheel_profile;
+  setup.rail_profile = a.rail_profile;
+  setup.nominal_radius = a.radius_mm * 1e-3;
+  setup.gauge = a.gauge_mm * 1e-3;
+  setup.cant = a.cant;
+  return {fastnorm_example::track_of(setup), fastnorm_example::wheelset_of(setup)};
 }
 
 wr::PatchGridOptions grid_options(const Arguments& a) {
