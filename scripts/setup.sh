@@ -4,7 +4,8 @@
 set -euo pipefail
 
 fastnorm_root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
-fastnorm_packages=(cmake g++ gfortran libeigen3-dev catch2)
+fastnorm_packages=(cmake g++ gfortran libeigen3-dev catch2
+  python3-dev pybind11-dev python3-numpy python3-matplotlib python3-pytest)
 
 fastnorm_install_packages() {
   local missing=()

@@ -1,0 +1,570 @@
+// The compiled part of the Python module fastnorm (pybind11): solvers, .case files, the
+// wheelset contact model and the static equilibrium, with NumPy arrays of shape (my, mx)
+// and SI units in the keyword names (docs/bindings.md). fastnorm/__init__.py re-exports it;
+// fastnorm/plot.py draws. Bad input raises fastnorm.FastnormError, a ValueError carrying the
+// library's message. Solves release the GIL; an object that keeps state between calls
+// (solve_next, the wheelset model) serialises its calls with its own mutex.
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <fastnorm/any_solver.hpp>
+#include <fastnorm/case_file.hpp>
+#include <fastnorm/version.hpp>
+#include <fastnorm/wheelrail.hpp>
+
+#include "support/wheelset_setup.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <fstream>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace py = pybind11;
+using namespace pybind11::literals;
+namespace wr = fastnorm::wheelrail;
+
+namespace {
+
+using Grid = fastnorm::Grid<double>;
+using Material = fastnorm::Material<double>;
+using Solution = fastnorm::Solution<double>;
+// C order: row j of a (my, mx) array is strip j, so element k = i + mx·j is [j, i].
+using InputArray = py::array_t<double, py::array::c_style | py::array::forcecast>;
+
+py::ssize_t rows(const Grid& grid) { return static_cast<py::ssize_t>(grid.my()); }
+py::ssize_t columns(const Grid& grid) { return static_cast<py::ssize_t>(grid.mx()); }
+
+// The values of a (my, mx) array of the grid; `name` is the Python argument.
+Eigen::VectorXd values_on(const Grid& grid, const InputArray& array, const char* name) {
+  FASTNORM_CHECK(array.ndim() == 2 && array.shape(0) == rows(grid) && array.shape(1) == columns(grid),
+                 std::string(name) + " must have shape (my, mx) = (" + std::to_string(grid.my()) + ", " +
+                     std::to_string(grid.mx()) + ") of its grid");
+  return Eigen::Map<const Eigen::VectorXd>(array.data(), grid.size());
+}
+
+template <typename Value, typename Vector>
+py::array_t<Value> map_of(const Grid& grid, const Vector& values) {
+  py::array_t<Value> map({rows(grid), columns(grid)});
+  std::copy(values.data(), values.data() + values.size(), map.mutable_data());
+  return map;
+}
+
+py::array_t<double> vector3(const Eigen::Vector3d& value) {
+  py::array_t<double> array(3);
+  std::copy(value.data(), value.data() + 3, array.mutable_data());
+  return array;
+}
+
+// A solver's answer as Python holds it.
+struct PySolution {
+  std::string status;
+  std::string message;
+  py::array_t<double> pressure;  // Pa, (my, mx)
+  py::array_t<bool> in_contact;  // (my, mx)
+  double normal_force = 0;       // N
+  double approach = 0;           // m
+  double residual = 0;
+  int iterations = 0;
+  Eigen::Index contact_count = 0;
+  bool at_edge = false;
+  bool ok = false;
+};
+
+PySolution to_python(const Grid& grid, const Solution& solution) {
+  PySolution out;
+  out.status = fastnorm::to_string(solution.status);
+  out.message = solution.message;
+  out.pressure = map_of<double>(grid, solution.pressure);
+  out.in_contact = map_of<bool>(grid, solution.in_contact);
+  out.normal_force = solution.normal_force;
+  out.approach = solution.approach;
+  out.residual = solution.residual;
+  out.iterations = solution.iterations;
+  out.contact_count = solution.contact_count();
+  out.at_edge = solution.at_edge;
+  out.ok = solution.ok();
+  return out;
+}
+
+// None: approach control; a number: force control (N).
+fastnorm::Loading<double> loading_of(std::optional<double> normal_force) {
+  return normal_force ? fastnorm::Loading<double>::force(*normal_force) : fastnorm::Loading<double>::approach();
+}
+
+fastnorm::SolverSpec<double> spec_of(const std::string& name, std::optional<int> max_iterations,
+                                     std::optional<double> tolerance) {
+  auto spec = fastnorm::SolverSpec<double>::parse(name);
+  if (max_iterations) spec.active_set.max_iterations = spec.cg.max_iterations = *max_iterations;
+  if (tolerance) spec.cg.tolerance = *tolerance;
+  spec.validate();
+  return spec;
+}
+
+// A solver by name. solve is cold and may run in several threads at once; solve_next and
+// the stiffness keep the sequence's state, one call at a time.
+class PySolver {
+ public:
+  PySolver(const std::string& name, const Grid& grid, const Material& material, std::optional<int> max_iterations,
+           std::optional<double> tolerance)
+      : solver_(spec_of(name, max_iterations, tolerance), grid, material) {}
+
+  PySolution solve(const InputArray& undeformed_distance, std::optional<double> normal_force) const {
+    const Eigen::VectorXd h = values_on(grid(), undeformed_distance, "undeformed_distance_m");
+    const auto loading = loading_of(normal_force);
+    Solution solution;
+    {
+      py::gil_scoped_release released;
+      solution = solver_.solve(h, loading);
+    }
+    return to_python(grid(), solution);
+  }
+
+  PySolution solve_next(const InputArray& undeformed_distance, std::optional<double> normal_force) {
+    const Eigen::VectorXd h = values_on(grid(), undeformed_distance, "undeformed_distance_m");
+    const auto loading = loading_of(normal_force);
+    Solution solution;
+    {
+      py::gil_scoped_release released;
+      const std::lock_guard<std::mutex> lock(sequence_);
+      last_next_ = solver_.solve_next(h, loading);
+      solution = last_next_;
+    }
+    return to_python(grid(), solution);
+  }
+
+  double normal_stiffness() {
+    py::gil_scoped_release released;
+    const std::lock_guard<std::mutex> lock(sequence_);
+    FASTNORM_CHECK(last_next_.status != fastnorm::Status::not_solved, "no solve_next to take the stiffness of");
+    return solver_.normal_stiffness(last_next_, solver_.workspace());
+  }
+
+  std::string name() const { return solver_.name(); }
+  const Grid& grid() const { return solver_.grid(); }
+
+ private:
+  fastnorm::AnySolver<double> solver_;
+  std::mutex sequence_;  // guards last_next_ and the solver's own workspace
+  Solution last_next_;
+};
+
+// A .case file's content.
+using Case = fastnorm::Case<double>;
+
+Case make_case(const std::string& name, const Grid& grid, const Material& material,
+               const InputArray& undeformed_distance, std::optional<double> normal_force, double stated_approach) {
+  FASTNORM_CHECK(material.young_modulus(1) == material.young_modulus(2) &&
+                     material.poisson_ratio(1) == material.poisson_ratio(2),
+                 "material: a .case file holds one material, body 2 must equal body 1");
+  return Case{name,
+              "fastnorm Python module",
+              grid,
+              material,
+              loading_of(normal_force),
+              normal_force ? 0.0 : stated_approach,
+              values_on(grid, undeformed_distance, "undeformed_distance_m"),
+              std::nullopt};
+}
+
+void write_case(const std::string& path, Case problem, const std::optional<PySolution>& solution) {
+  if (solution) {
+    fastnorm::CaseResult<double> stored;
+    stored.normal_force = solution->normal_force;
+    stored.approach = solution->approach;
+    stored.contact_count = solution->contact_count;
+    stored.iterations = solution->iterations;
+    stored.pressure = values_on(problem.grid, solution->pressure, "solution.pressure_pa");
+    problem.result = stored;
+  }
+  std::ofstream out(path);
+  FASTNORM_CHECK(out.good(), "path: cannot open '" + path + "' for writing");
+  fastnorm::write_case(out, problem);
+  FASTNORM_CHECK(out.good(), "path: writing '" + path + "' failed");
+}
+
+// One contact patch of the wheelset model, copied out. Track frame: x forward, y right, z down.
+struct PyPatch {
+  Grid grid{1, 1, 1, 1};
+  PySolution solution;
+  py::array_t<double> undeformed_distance;  // m, (my, mx), at approach 0
+  py::array_t<double> centre, force, moment, pressure_centre;
+  double normal_force = 0, contact_angle = 0, approach = 0, stiffness = 0, profile_y = 0, max_pressure = 0;
+  bool flange_climb = false;
+  std::string history;
+};
+
+PyPatch to_python(const wr::PatchContact& contact, const wr::Wheelset& wheelset) {
+  PyPatch out;
+  out.grid = contact.patch.grid;
+  out.solution = to_python(contact.patch.grid, contact.solution);
+  out.undeformed_distance = map_of<double>(contact.patch.grid, contact.patch.undeformed_distance);
+  out.centre = vector3(contact.centre);
+  out.force = vector3(contact.force);
+  out.moment = vector3(contact.moment);
+  out.pressure_centre = vector3(contact.pressure_centre);
+  out.normal_force = contact.normal_force;
+  out.contact_angle = contact.contact_angle;
+  out.approach = contact.approach;
+  out.stiffness = contact.stiffness;
+  out.profile_y = contact.profile_y;
+  out.max_pressure = contact.max_pressure;
+  out.flange_climb = wheelset.at_flange_climb(contact.profile_y);
+  out.history = wr::to_string(contact.history);
+  return out;
+}
+
+struct PyWheel {
+  std::string side;
+  std::vector<PyPatch> patches;
+  py::array_t<double> force, moment;
+  double normal_force = 0;
+  bool flange_climb = false;
+};
+
+struct PyWheelsetResult {
+  wr::WheelsetPose pose;
+  std::vector<PyWheel> wheels;  // left, right
+  py::array_t<double> force, moment;
+  bool ok = false;
+};
+
+struct PyEquilibrium {
+  std::string status, message;
+  wr::WheelsetPose pose;
+  std::vector<PyWheel> wheels;  // left, right: the loaded patches at pose
+  double vertical_force = 0, lateral_force = 0, vertical_residual = 0, roll_residual = 0;
+  int iterations = 0;
+  bool ok = false;
+};
+
+// The patches of both wheels, summed per wheel (the equilibrium's list, split by rail).
+std::vector<PyWheel> wheels_of(const std::vector<wr::PatchContact>& patches, const wr::Wheelset& wheelset) {
+  std::vector<PyWheel> wheels(2);
+  wheels[0].side = "left";
+  wheels[1].side = "right";
+  std::array<Eigen::Vector3d, 2> force{Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};
+  std::array<Eigen::Vector3d, 2> moment = force;
+  for (const auto& patch : patches) {
+    const std::size_t wheel = fastnorm_example::wheel_index_of(patch);
+    wheels[wheel].patches.push_back(to_python(patch, wheelset));
+    wheels[wheel].normal_force += patch.normal_force;
+    wheels[wheel].flange_climb = wheels[wheel].flange_climb || wheels[wheel].patches.back().flange_climb;
+    force[wheel] += patch.force;
+    moment[wheel] += patch.moment;
+  }
+  for (std::size_t wheel = 0; wheel < 2; ++wheel) {
+    wheels[wheel].force = vector3(force[wheel]);
+    wheels[wheel].moment = vector3(moment[wheel]);
+  }
+  return wheels;
+}
+
+// The wheelset contact model of the time loop and the equilibrium on the same set-up.
+class PyWheelset {
+ public:
+  PyWheelset(const fastnorm_example::WheelsetSetup& setup, const wr::WheelsetContactOptions& options)
+      : track_(fastnorm_example::track_of(setup)),
+        wheelset_(fastnorm_example::wheelset_of(setup)),
+        options_(options),
+        model_(track_, wheelset_, options_) {}
+  PyWheelset(const PyWheelset&) = delete;  // model_ refers to track_ and wheelset_
+  PyWheelset& operator=(const PyWheelset&) = delete;
+
+  PyWheelsetResult evaluate(const wr::WheelsetPose& pose) {
+    std::optional<wr::WheelsetContactResult> result;
+    {
+      py::gil_scoped_release released;
+      const std::lock_guard<std::mutex> lock(calls_);
+      result = model_.evaluate(pose);
+    }
+    PyWheelsetResult out;
+    out.pose = result->pose;
+    for (const auto& wheel : result->wheels) {
+      PyWheel copy;
+      copy.side = wr::to_string(wheel.side);
+      for (const auto& patch : wheel.patches) copy.patches.push_back(to_python(patch, wheelset_));
+      copy.force = vector3(wheel.force);
+      copy.moment = vector3(wheel.moment);
+      copy.normal_force = wheel.normal_force;
+      copy.flange_climb = wheel.flange_climb;
+      out.wheels.push_back(std::move(copy));
+    }
+    out.force = vector3(result->force);
+    out.moment = vector3(result->moment);
+    out.ok = result->ok();
+    return out;
+  }
+
+  PyEquilibrium equilibrium(double load, double y, double yaw, double force_tolerance, int max_iterations) {
+    auto options = fastnorm_example::equilibrium_options_of(options_);
+    options.force_tolerance = force_tolerance;
+    options.max_iterations = max_iterations;
+    std::optional<wr::Equilibrium> found;
+    {
+      py::gil_scoped_release released;
+      found = wr::solve_equilibrium(track_, wheelset_, y, yaw, load, options);
+    }
+    PyEquilibrium out;
+    out.status = wr::to_string(found->status);
+    out.message = found->message;
+    out.pose = found->pose;
+    out.wheels = wheels_of(found->patches, wheelset_);
+    out.vertical_force = found->vertical_force;
+    out.lateral_force = found->lateral_force;
+    out.vertical_residual = found->vertical_residual;
+    out.roll_residual = found->roll_residual;
+    out.iterations = found->iterations;
+    out.ok = found->ok();
+    return out;
+  }
+
+  double flange_angle() const { return wheelset_.flange_angle(); }
+
+ private:
+  wr::Track track_;
+  wr::Wheelset wheelset_;
+  wr::WheelsetContactOptions options_;
+  wr::WheelsetContact<> model_;
+  std::mutex calls_;  // evaluate changes the model's state
+};
+
+std::unique_ptr<PyWheelset> make_wheelset(const std::string& solver, Eigen::Index elements,
+                                          std::optional<std::string> wheel_profile,
+                                          std::optional<std::string> rail_profile, double nominal_radius,
+                                          double gauge, double cant, const Material& material, bool stiffness) {
+  fastnorm::detail::check_positive(nominal_radius, "nominal_radius_m");
+  fastnorm::detail::check_positive(gauge, "gauge_m");
+  FASTNORM_CHECK(std::isfinite(cant), fastnorm::detail::describe("cant_rad must be finite", cant));
+  fastnorm_example::WheelsetSetup setup;
+  setup.wheel_profile = wheel_profile.value_or("");
+  setup.rail_profile = rail_profile.value_or("");
+  setup.nominal_radius = nominal_radius;
+  setup.gauge = gauge;
+  setup.cant = cant;
+  wr::WheelsetContactOptions options;
+  options.solver = fastnorm::SolverSpec<double>::parse(solver);
+  options.grid.elements = elements;
+  options.material = material;
+  options.stiffness = stiffness;
+  return std::make_unique<PyWheelset>(setup, options);
+}
+
+std::string version() {
+  return std::to_string(FASTNORM_VERSION_MAJOR) + "." + std::to_string(FASTNORM_VERSION_MINOR) + "." +
+         std::to_string(FASTNORM_VERSION_PATCH);
+}
+
+void bind_basics(py::module_& m) {
+  py::class_<Grid>(m, "Grid",
+                   "A regular grid of mx × my rectangles of dx_m × dy_m (m); (x0_m, y0_m) is the centre of element "
+                   "(0, 0). x is the rolling direction; arrays over a grid have shape (my, mx).")
+      .def(py::init<Eigen::Index, Eigen::Index, double, double, double, double>(), "mx"_a, "my"_a, "dx_m"_a,
+           "dy_m"_a, "x0_m"_a = 0.0, "y0_m"_a = 0.0)
+      .def_property_readonly("mx", &Grid::mx)
+      .def_property_readonly("my", &Grid::my)
+      .def_property_readonly("dx_m", &Grid::dx)
+      .def_property_readonly("dy_m", &Grid::dy)
+      .def_property_readonly("x0_m", &Grid::x0)
+      .def_property_readonly("y0_m", &Grid::y0)
+      .def_property_readonly("shape", [](const Grid& grid) { return py::make_tuple(grid.my(), grid.mx()); },
+                             "(my, mx), the shape of arrays over the grid")
+      .def("__repr__", [](const Grid& grid) {
+        return "Grid(mx=" + std::to_string(grid.mx()) + ", my=" + std::to_string(grid.my()) +
+               ", dx_m=" + fastnorm::detail::to_text(grid.dx()) + ", dy_m=" + fastnorm::detail::to_text(grid.dy()) +
+               ", x0_m=" + fastnorm::detail::to_text(grid.x0()) + ", y0_m=" + fastnorm::detail::to_text(grid.y0()) +
+               ")";
+      });
+
+  py::class_<Material>(m, "Material",
+                       "Young's modulus (Pa) and Poisson's ratio of the wheel (body 1) and the rail (body 2); "
+                       "Material(young_modulus_pa, poisson_ratio) gives both bodies the same.")
+      .def(py::init<double, double>(), "young_modulus_pa"_a, "poisson_ratio"_a)
+      .def(py::init<double, double, double, double>(), "young_modulus_1_pa"_a, "poisson_ratio_1"_a,
+           "young_modulus_2_pa"_a, "poisson_ratio_2"_a)
+      .def_property_readonly("young_modulus_1_pa", [](const Material& value) { return value.young_modulus(1); })
+      .def_property_readonly("poisson_ratio_1", [](const Material& value) { return value.poisson_ratio(1); })
+      .def_property_readonly("young_modulus_2_pa", [](const Material& value) { return value.young_modulus(2); })
+      .def_property_readonly("poisson_ratio_2", [](const Material& value) { return value.poisson_ratio(2); })
+      .def_property_readonly("combined_modulus_pa", &Material::combined_modulus, "E* (Pa), docs/design.md §2");
+
+  py::class_<PySolution>(m, "Solution", "A solver's answer.")
+      .def_readonly("status", &PySolution::status, "'converged', 'no contact', 'iteration limit', 'cycled', ...")
+      .def_readonly("message", &PySolution::message, "why, when not converged")
+      .def_readonly("ok", &PySolution::ok, "a usable answer ('converged', 'no contact' or 'cycled')")
+      .def_readonly("pressure_pa", &PySolution::pressure, "pressures (Pa), shape (my, mx)")
+      .def_readonly("in_contact", &PySolution::in_contact, "the contact set, bool, shape (my, mx)")
+      .def_readonly("normal_force_n", &PySolution::normal_force, "Fn (N)")
+      .def_readonly("approach_m", &PySolution::approach, "the rigid approach found in force control (m)")
+      .def_readonly("residual", &PySolution::residual, "the solver's relative measure of the Signorini conditions")
+      .def_readonly("iterations", &PySolution::iterations, "active-set solves or CG iterations")
+      .def_readonly("contact_count", &PySolution::contact_count, "elements in contact")
+      .def_readonly("at_edge", &PySolution::at_edge, "contact touches the grid's boundary (make the grid larger)")
+      .def("__repr__", [](const PySolution& s) {
+        return "Solution(status='" + s.status + "', normal_force_n=" + fastnorm::detail::to_text(s.normal_force) +
+               ", contact_count=" + std::to_string(s.contact_count) + ")";
+      });
+
+  py::class_<PySolver>(m, "Solver",
+                       "A solver on a grid and material, by name: 'norm', 'cg', 'elliptic', 'polynomial[:G]', "
+                       "'elliptic-edge[:K]', 'polynomial-edge[:G[:K]]'. max_iterations: active-set solves (200) or "
+                       "CG iterations (5000); tolerance: CG's (1e-9); None keeps the default.")
+      .def(py::init<const std::string&, const Grid&, const Material&, std::optional<int>, std::optional<double>>(),
+           "name"_a, "grid"_a, "material"_a, py::kw_only(), "max_iterations"_a = py::none(),
+           "tolerance"_a = py::none())
+      .def("solve", &PySolver::solve, "undeformed_distance_m"_a, py::kw_only(), "normal_force_n"_a = py::none(),
+           "A cold solve on h (m, + = gap, shape (my, mx)). Without normal_force_n: approach control, h holds the "
+           "approach; with it (N): force control. Threads may call it at once; the GIL is released.")
+      .def("solve_next", &PySolver::solve_next, "undeformed_distance_m"_a, py::kw_only(),
+           "normal_force_n"_a = py::none(),
+           "The next problem of a sequence, started from the previous solve_next's contact set (NORM and CG: the "
+           "cold answer, sooner; a reduced solver's may differ within its accuracy).")
+      .def("normal_stiffness_n_per_m", &PySolver::normal_stiffness,
+           "dFn/d(approach) (N/m) at the contact set of the last solve_next")
+      .def_property_readonly("name", &PySolver::name)
+      .def_property_readonly("grid", &PySolver::grid);
+}
+
+void bind_case_files(py::module_& m) {
+  py::class_<fastnorm::CaseResult<double>>(m, "CaseResult", "The solution part a .case file stores.")
+      .def_readonly("normal_force_n", &fastnorm::CaseResult<double>::normal_force)
+      .def_readonly("approach_m", &fastnorm::CaseResult<double>::approach)
+      .def_readonly("contact_count", &fastnorm::CaseResult<double>::contact_count)
+      .def_readonly("iterations", &fastnorm::CaseResult<double>::iterations);
+
+  py::class_<Case>(m, "Case",
+                   "A normal-contact problem as a .case file stores it (docs/case-format.md). Without "
+                   "normal_force_n it is approach-controlled: h already holds the approach, stated_approach_m "
+                   "is for information.")
+      .def(py::init(&make_case), "name"_a, "grid"_a, "material"_a, "undeformed_distance_m"_a, py::kw_only(),
+           "normal_force_n"_a = py::none(), "stated_approach_m"_a = 0.0)
+      .def_readonly("name", &Case::name)
+      .def_readonly("source", &Case::source)
+      .def_readonly("grid", &Case::grid)
+      .def_readonly("material", &Case::material)
+      .def_property_readonly("normal_force_n",
+                             [](const Case& problem) -> std::optional<double> {
+                               if (problem.loading.control != fastnorm::Control::force) return std::nullopt;
+                               return problem.loading.normal_force;
+                             },
+                             "Fn (N) in force control, None in approach control")
+      .def_readonly("stated_approach_m", &Case::stated_approach)
+      .def_property_readonly("undeformed_distance_m",
+                             [](const Case& problem) { return map_of<double>(problem.grid, problem.undeformed_distance); },
+                             "h (m, + = gap), shape (my, mx)")
+      .def_property_readonly("result", [](const Case& problem) { return problem.result; },
+                             "the stored solution's numbers, or None")
+      .def_property_readonly("result_pressure_pa",
+                             [](const Case& problem) -> std::optional<py::array_t<double>> {
+                               if (!problem.result) return std::nullopt;
+                               return map_of<double>(problem.grid, problem.result->pressure);
+                             },
+                             "the stored pressures (Pa), shape (my, mx), or None");
+
+  m.def("read_case", &fastnorm::read_case_file<double>, "path"_a, "Reads a .case file.");
+  m.def("write_case", &write_case, "path"_a, "case"_a, "solution"_a = py::none(),
+        "Writes a .case file at full precision, with a solution part when a Solution is given.");
+}
+
+void bind_wheelset(py::module_& m) {
+  py::class_<wr::WheelsetPose>(m, "Pose",
+                               "The wheelset's position on the track: lateral shift y (m), vertical z (m, down; 0 "
+                               "puts the taping-line points in the track plane), roll about x (rad, > 0 lowers the "
+                               "right wheel), yaw about the rolled z axis (rad).")
+      .def(py::init([](double y, double z, double roll, double yaw) { return wr::WheelsetPose{y, z, roll, yaw}; }),
+           py::kw_only(), "lateral_shift_m"_a = 0.0, "vertical_m"_a = 0.0, "roll_rad"_a = 0.0, "yaw_rad"_a = 0.0)
+      .def_readonly("lateral_shift_m", &wr::WheelsetPose::y)
+      .def_readonly("vertical_m", &wr::WheelsetPose::z)
+      .def_readonly("roll_rad", &wr::WheelsetPose::roll)
+      .def_readonly("yaw_rad", &wr::WheelsetPose::yaw)
+      .def("__repr__", [](const wr::WheelsetPose& pose) {
+        return "Pose(lateral_shift_m=" + fastnorm::detail::to_text(pose.y) + ", vertical_m=" +
+               fastnorm::detail::to_text(pose.z) + ", roll_rad=" + fastnorm::detail::to_text(pose.roll) +
+               ", yaw_rad=" + fastnorm::detail::to_text(pose.yaw) + ")";
+      });
+
+  py::class_<PyPatch>(m, "Patch", "One contact patch. Track frame: x forward, y right, z down.")
+      .def_readonly("grid", &PyPatch::grid, "the patch's grid in its tangent plane")
+      .def_readonly("solution", &PyPatch::solution, "pressures on grid and the solve's status")
+      .def_readonly("undeformed_distance_m", &PyPatch::undeformed_distance, "h at approach 0 (m), shape (my, mx)")
+      .def_readonly("normal_force_n", &PyPatch::normal_force, "Fn (N)")
+      .def_readonly("force_n", &PyPatch::force, "the normal force on the wheel, track frame (N)")
+      .def_readonly("moment_nm", &PyPatch::moment, "its moment about the wheelset centre (N m)")
+      .def_readonly("centre_m", &PyPatch::centre, "the contact reference point (m)")
+      .def_readonly("pressure_centre_m", &PyPatch::pressure_centre, "the centroid of the pressure (m)")
+      .def_readonly("contact_angle_rad", &PyPatch::contact_angle, "of the normal from the vertical, + towards the "
+                                                                   "track centre (rad)")
+      .def_readonly("approach_m", &PyPatch::approach, "the rigid interpenetration (m)")
+      .def_readonly("stiffness_n_per_m", &PyPatch::stiffness, "dFn/d(approach) (N/m); NaN when not asked for")
+      .def_readonly("profile_y_m", &PyPatch::profile_y, "wheel profile coordinate y_w of the reference point (m)")
+      .def_readonly("max_pressure_pa", &PyPatch::max_pressure)
+      .def_readonly("flange_climb", &PyPatch::flange_climb, "the reference point is on the flange's steepest flank "
+                                                            "or beyond")
+      .def_readonly("history", &PyPatch::history, "'continued', 'appeared', 'merged' or 'split' since the last call");
+
+  py::class_<PyWheel>(m, "Wheel", "One wheel's patches (tread first) and totals.")
+      .def_readonly("side", &PyWheel::side)
+      .def_readonly("patches", &PyWheel::patches)
+      .def_readonly("force_n", &PyWheel::force)
+      .def_readonly("moment_nm", &PyWheel::moment)
+      .def_readonly("normal_force_n", &PyWheel::normal_force)
+      .def_readonly("flange_climb", &PyWheel::flange_climb);
+
+  py::class_<PyWheelsetResult>(m, "WheelsetResult", "Both wheels at one pose.")
+      .def_readonly("pose", &PyWheelsetResult::pose)
+      .def_readonly("wheels", &PyWheelsetResult::wheels, "[left, right]")
+      .def_readonly("force_n", &PyWheelsetResult::force, "on the wheelset, track frame (N)")
+      .def_readonly("moment_nm", &PyWheelsetResult::moment, "about its centre (N m)")
+      .def_readonly("ok", &PyWheelsetResult::ok, "every patch solved with a usable answer");
+
+  py::class_<PyEquilibrium>(m, "Equilibrium", "The static equilibrium of a loaded wheelset.")
+      .def_readonly("status", &PyEquilibrium::status,
+                    "'converged', 'lost contact', 'not converged', 'solver failed' or 'flange climb'")
+      .def_readonly("message", &PyEquilibrium::message)
+      .def_readonly("ok", &PyEquilibrium::ok)
+      .def_readonly("pose", &PyEquilibrium::pose, "z and roll found; y and yaw as given")
+      .def_readonly("wheels", &PyEquilibrium::wheels, "[left, right], their patches at pose")
+      .def_readonly("vertical_force_n", &PyEquilibrium::vertical_force, "what the rails carry (N)")
+      .def_readonly("lateral_force_n", &PyEquilibrium::lateral_force, "the lateral force needed to hold y (N)")
+      .def_readonly("vertical_residual_n", &PyEquilibrium::vertical_residual)
+      .def_readonly("roll_residual_nm", &PyEquilibrium::roll_residual)
+      .def_readonly("iterations", &PyEquilibrium::iterations, "contact evaluations");
+
+  py::class_<PyWheelset>(m, "WheelsetContact",
+                         "The contact model of one wheelset on its track (docs/wheel-rail.md §9), kept between "
+                         "calls. Profiles: files (SIMPACK .prw/.prr or 'y z' in mm), None for S1002 and UIC60. "
+                         "elements: across the largest patch. Calls on one model run one at a time.")
+      .def(py::init(&make_wheelset), py::kw_only(), "solver"_a = "norm", "elements"_a = 60,
+           "wheel_profile"_a = py::none(), "rail_profile"_a = py::none(),
+           "nominal_radius_m"_a = wr::WheelsetLayout().nominal_radius, "gauge_m"_a = wr::TrackLayout().gauge,
+           "cant_rad"_a = wr::TrackLayout().cant, "material"_a = Material(2.1e11, 0.3), "stiffness"_a = true)
+      .def(
+          "evaluate",
+          [](PyWheelset& model, double y, double z, double roll, double yaw) {
+            return model.evaluate({y, z, roll, yaw});
+          },
+          py::kw_only(), "lateral_shift_m"_a = 0.0, "vertical_m"_a = 0.0, "roll_rad"_a = 0.0, "yaw_rad"_a = 0.0,
+          "Every wheel's patches, forces and stiffness at a pose (see Pose).")
+      .def("equilibrium", &PyWheelset::equilibrium, py::kw_only(), "load_n"_a, "lateral_shift_m"_a = 0.0,
+           "yaw_rad"_a = 0.0, "force_tolerance"_a = wr::EquilibriumOptions().force_tolerance,
+           "max_iterations"_a = wr::EquilibriumOptions().max_iterations,
+           "z and roll at which the rails carry load_n (N) at the lateral shift and yaw, with this model's "
+           "solver, elements and material.")
+      .def_property_readonly("flange_angle_rad", &PyWheelset::flange_angle,
+                             "the steepest angle of the wheel's flange face");
+}
+
+}  // namespace
+
+PYBIND11_MODULE(_fastnorm, m) {
+  m.doc() = "fastnorm's compiled core; import fastnorm instead.";
+  m.attr("__version__") = version();
+  py::register_exception<fastnorm::invalid_argument>(m, "FastnormError", PyExc_ValueError);
+  bind_basics(m);
+  bind_case_files(m);
+  bind_wheelset(m);
+}
