@@ -18,7 +18,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <fstream>
 #include <mutex>
 #include <optional>
 #include <string>
@@ -158,9 +157,7 @@ using Case = fastnorm::Case<double>;
 
 Case make_case(const std::string& name, const Grid& grid, const Material& material,
                const InputArray& undeformed_distance, std::optional<double> normal_force, double stated_approach) {
-  FASTNORM_CHECK(material.young_modulus(1) == material.young_modulus(2) &&
-                     material.poisson_ratio(1) == material.poisson_ratio(2),
-                 "material: a .case file holds one material, body 2 must equal body 1");
+  fastnorm::detail::check_one_material(material);  // what write_case can store
   return Case{name,
               "fastnorm Python module",
               grid,
@@ -181,10 +178,7 @@ void write_case(const std::string& path, Case problem, const std::optional<PySol
     stored.pressure = values_on(problem.grid, solution->pressure, "solution.pressure_pa");
     problem.result = stored;
   }
-  std::ofstream out(path);
-  FASTNORM_CHECK(out.good(), "path: cannot open '" + path + "' for writing");
-  fastnorm::write_case(out, problem);
-  FASTNORM_CHECK(out.good(), "path: writing '" + path + "' failed");
+  fastnorm::write_case_file(path, problem);
 }
 
 // One contact patch of the wheelset model, copied out. Track frame: x forward, y right, z down.

@@ -340,6 +340,16 @@ Case<Scalar> read_case_file(const std::string& path) {
   return read_case<Scalar>(in, path);
 }
 
+namespace detail {
+/// The format stores one E and ν: refuses a material whose bodies differ.
+template <typename Scalar>
+void check_one_material(const Material<Scalar>& material) {
+  FASTNORM_CHECK(material.young_modulus(1) == material.young_modulus(2) &&
+                     material.poisson_ratio(1) == material.poisson_ratio(2),
+                 "material: a .case file holds one material, body 2 must equal body 1");
+}
+}  // namespace detail
+
 /// Writes a case (and its result, if any) in the `.case` format, full precision.
 template <typename Scalar>
 void write_case(std::ostream& out, const Case<Scalar>& problem) {
@@ -374,6 +384,18 @@ void write_case(std::ostream& out, const Case<Scalar>& problem) {
         << "\np\n";
     block(r.pressure);
   }
+}
+
+/// Writes a case file (write_case into the file at `path`).
+/// @throws fastnorm::invalid_argument if the bodies' materials differ (the format holds
+///         one), or the file cannot be opened or written
+template <typename Scalar>
+void write_case_file(const std::string& path, const Case<Scalar>& problem) {
+  detail::check_one_material(problem.material);
+  std::ofstream out(path);
+  FASTNORM_CHECK(out.good(), "path: cannot open '" + path + "' for writing");
+  write_case(out, problem);
+  FASTNORM_CHECK(out.good(), "path: writing '" + path + "' failed");
 }
 
 }  // namespace fastnorm

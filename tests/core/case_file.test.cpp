@@ -1,5 +1,8 @@
+#include <unistd.h>
+
 #include <catch2/catch.hpp>
 #include <fastnorm/case_file.hpp>
+#include <filesystem>
 #include <sstream>
 
 using Catch::Matchers::Contains;
@@ -84,6 +87,23 @@ TEST_CASE("Case writer and reader round-trip exactly", "[case]") {
   CHECK(approach_again.loading.control == fastnorm::Control::approach);
   CHECK(approach_again.stated_approach == 2.5e-5);
   CHECK_FALSE(approach_again.result.has_value());
+}
+
+TEST_CASE("Case files are written whole and read back, and what the format cannot hold is refused", "[case]") {
+  namespace fs = std::filesystem;
+  const fs::path path = fs::temp_directory_path() / ("fastnorm_case_" + std::to_string(getpid()) + ".case");
+  auto problem = read_text(valid_case);
+  fastnorm::write_case_file(path.string(), problem);
+  const auto again = fastnorm::read_case_file(path.string());
+  fs::remove(path);
+  CHECK(again.undeformed_distance == problem.undeformed_distance);
+  CHECK(again.result->pressure == problem.result->pressure);
+
+  CHECK_THROWS_WITH(fastnorm::write_case_file("/nonexistent/fastnorm.case", problem),
+                    Contains("path: cannot open '/nonexistent/fastnorm.case'"));
+  problem.material = fastnorm::Material<>(2.1e11, 0.3, 2.0e11, 0.3);
+  CHECK_THROWS_WITH(fastnorm::write_case_file(path.string(), problem), Contains("material: a .case file holds one"));
+  CHECK_FALSE(fs::exists(path));  // refused before the file is opened
 }
 
 TEST_CASE("Case reader rejects malformed files with the line number", "[case]") {
