@@ -15,7 +15,7 @@
 namespace {
 
 void compare(const char* shape, double radius_x, double radius_y, double force, const std::vector<int>& sizes) {
-  const fastnorm::Material<> steel(2.1e11, 0.3);
+  const auto steel = fastnorm::Material<>::steel();
   const auto hertz = fastnorm::hertz_from_force(radius_x, radius_y, steel.combined_modulus(), force);
   std::printf("\n%s: R_x = %.3f m, R_y = %.3f m, Fn = %.0f N; Hertz a = %.4f mm, b = %.4f mm, p0 = %.1f MPa, "
               "approach = %.3f um\n",
@@ -23,7 +23,6 @@ void compare(const char* shape, double radius_x, double radius_y, double force, 
               hertz.max_pressure * 1e-6, hertz.approach * 1e6);
   std::printf("%7s %9s %13s %10s %13s %10s %10s %9s %8s\n", "grid", "ncontact", "approach_um", "err",
               "pmax_MPa", "err", "area_err", "iters", "solve_s");
-  const double pi = 3.14159265358979323846;
   for (int n : sizes) {
     const auto grid = fastnorm::hertz_grid(hertz, n, 1.25);
     const fastnorm::NormSolver<> solver(grid, steel);
@@ -36,7 +35,7 @@ void compare(const char* shape, double radius_x, double radius_y, double force, 
                 static_cast<long>(solution.contact_count()), solution.approach * 1e6,
                 solution.approach / hertz.approach - 1, solution.pressure.maxCoeff() * 1e-6,
                 solution.pressure.maxCoeff() / hertz.max_pressure - 1,
-                area / (pi * hertz.semi_axis_x * hertz.semi_axis_y) - 1, solution.iterations, seconds,
+                area / (fastnorm::pi<> * hertz.semi_axis_x * hertz.semi_axis_y) - 1, solution.iterations, seconds,
                 fastnorm::to_string(solution.status));
   }
 }
@@ -49,7 +48,7 @@ double seconds_of(Run run) {
 }
 
 void compare_reduced(const char* shape, double radius_x, double radius_y, double force, int n) {
-  const fastnorm::Material<> steel(2.1e11, 0.3);
+  const auto steel = fastnorm::Material<>::steel();
   const auto hertz = fastnorm::hertz_from_force(radius_x, radius_y, steel.combined_modulus(), force);
   const auto grid = fastnorm::hertz_grid(hertz, n, 1.25);
   const Eigen::VectorXd h = fastnorm::hertz_undeformed_distance(grid, radius_x, radius_y).array() - hertz.approach;

@@ -49,8 +49,8 @@ inline std::vector<wr::WheelsetPose> trajectory_poses(const wr::Track& track, co
   std::vector<wr::WheelsetPose> poses;
   for (int step = 0; step < steps; ++step) {
     const double t = 1e-3 * step;
-    auto pose = wr::rigid_contact_pose(track, wheelset, 5e-3 * std::sin(2 * M_PI * t), 3e-3 * std::cos(2 * M_PI * t));
-    pose.z += 0.1e-3 + 20e-6 * std::sin(2 * M_PI * 8 * t);
+    auto pose = wr::rigid_contact_pose(track, wheelset, 5e-3 * std::sin(2 * fastnorm::pi<> * t), 3e-3 * std::cos(2 * fastnorm::pi<> * t));
+    pose.z += 0.1e-3 + 20e-6 * std::sin(2 * fastnorm::pi<> * 8 * t);
     poses.push_back(pose);
   }
   return poses;

@@ -308,7 +308,8 @@ void fastnorm_wheelset_options_default(fastnorm_wheelset_options* options) {
   options->nominal_radius = wr::WheelsetLayout().nominal_radius;
   options->gauge = wr::TrackLayout().gauge;
   options->cant = wr::TrackLayout().cant;
-  options->material = {2.1e11, 0.3, 2.1e11, 0.3};
+  const auto steel = fastnorm::Material<double>::steel();
+  options->material = {steel.young_modulus(1), steel.poisson_ratio(1), steel.young_modulus(2), steel.poisson_ratio(2)};
   options->elements = static_cast<int>(wr::PatchGridOptions().elements);
   options->stiffness = 1;
 }
@@ -398,8 +399,9 @@ int fastnorm_wheelset_equilibrium(fastnorm_wheelset* model, double load, double 
     require_pointer(result, "result");
     model->equilibrium.reset();
     for (auto& patches : model->patches) patches.clear();
-    model->equilibrium = wr::solve_equilibrium(model->track, model->wheelset, y, yaw, load,
-                                               fastnorm_example::equilibrium_options_of(model->options));
+    wr::EquilibriumOptions options;
+    options.contact = model->options;
+    model->equilibrium = wr::solve_equilibrium(model->track, model->wheelset, y, yaw, load, options);
     const auto& found = *model->equilibrium;
     for (const auto& patch : found.patches) model->patches[fastnorm_example::wheel_index_of(patch)].push_back(&patch);
     fastnorm_equilibrium value{};

@@ -295,7 +295,8 @@ class PyWheelset {
   }
 
   PyEquilibrium equilibrium(double load, double y, double yaw, double force_tolerance, int max_iterations) {
-    auto options = fastnorm_example::equilibrium_options_of(options_);
+    wr::EquilibriumOptions options;
+    options.contact = options_;
     options.force_tolerance = force_tolerance;
     options.max_iterations = max_iterations;
     std::optional<wr::Equilibrium> found;
@@ -535,7 +536,7 @@ void bind_wheelset(py::module_& m) {
       .def(py::init(&make_wheelset), py::kw_only(), "solver"_a = "norm", "elements"_a = 60,
            "wheel_profile"_a = py::none(), "rail_profile"_a = py::none(),
            "nominal_radius_m"_a = wr::WheelsetLayout().nominal_radius, "gauge_m"_a = wr::TrackLayout().gauge,
-           "cant_rad"_a = wr::TrackLayout().cant, "material"_a = Material(2.1e11, 0.3), "stiffness"_a = true)
+           "cant_rad"_a = wr::TrackLayout().cant, "material"_a = Material::steel(), "stiffness"_a = true)
       .def(
           "evaluate",
           [](PyWheelset& model, double y, double z, double roll, double yaw) {

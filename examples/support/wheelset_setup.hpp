@@ -44,16 +44,6 @@ inline fastnorm::wheelrail::Wheelset wheelset_of(const WheelsetSetup& setup) {
   return fastnorm::wheelrail::Wheelset(profile_or(setup.wheel_profile, fastnorm::wheelrail::s1002_wheel()), layout);
 }
 
-// The equilibrium with the contact model's solver, grid and material.
-inline fastnorm::wheelrail::EquilibriumOptions equilibrium_options_of(
-    const fastnorm::wheelrail::WheelsetContactOptions& contact) {
-  fastnorm::wheelrail::EquilibriumOptions options;
-  options.solver = contact.solver;
-  options.grid = contact.grid;
-  options.material = contact.material;
-  return options;
-}
-
 // The wheel a patch of the equilibrium belongs to: 0 the left (its rail lies at y < 0), 1 the right.
 inline std::size_t wheel_index_of(const fastnorm::wheelrail::PatchContact& patch) {
   return patch.centre.y() < 0 ? 0 : 1;

@@ -67,7 +67,7 @@ struct Arguments {
 
 fastnorm_example::CommandLine command_line(Arguments& a) {
   using namespace fastnorm_example;
-  constexpr double degrees_per_radian = 180 / M_PI;
+  constexpr double degrees_per_radian = 180 / fastnorm::pi<>;
   const double y_limit = wr::PoseLimits::lateral_shift * 1e3, yaw_limit = wr::PoseLimits::yaw * degrees_per_radian;
   CommandLine line("fastnorm-wheelrail",
                    "An S1002 wheelset on UIC60 rails (or measured profiles) in static equilibrium; one line per contact patch.");
@@ -158,10 +158,10 @@ void report_patches(const Arguments& a, const fastnorm::SolverSpec<double>& solv
 int run_equilibrium(const Arguments& a, const Setup& setup, const fastnorm::SolverSpec<double>& solver,
                     const fastnorm::Material<double>& material) {
   wr::EquilibriumOptions options;
-  options.solver = solver;
-  options.grid = grid_options(a);
-  options.material = material;
-  const double y = a.y_mm * 1e-3, yaw = a.yaw_deg * M_PI / 180;
+  options.contact.solver = solver;
+  options.contact.grid = grid_options(a);
+  options.contact.material = material;
+  const double y = a.y_mm * 1e-3, yaw = a.yaw_deg * fastnorm::pi<> / 180;
   const auto result = a.fz > 0 ? wr::solve_single_wheel(setup.track, setup.wheelset,
                                                          a.wheel == "left" ? wr::Side::left : wr::Side::right, y, yaw,
                                                          a.fz, options, a.roll)
@@ -187,7 +187,7 @@ int run_fixed_pose(const Arguments& a, const Setup& setup, const fastnorm::Solve
   options.grid = grid_options(a);
   options.material = material;
   options.snap_to_lattice = false;
-  const wr::WheelsetPose pose{a.y_mm * 1e-3, a.z_mm * 1e-3, a.roll, a.yaw_deg * M_PI / 180};
+  const wr::WheelsetPose pose{a.y_mm * 1e-3, a.z_mm * 1e-3, a.roll, a.yaw_deg * fastnorm::pi<> / 180};
   options.reference_pose = pose;  // --elements across the largest patch at this pose
   wr::WheelsetContact<> contact(setup.track, setup.wheelset, options);
   const auto& result = contact.evaluate(pose);

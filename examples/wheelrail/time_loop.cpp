@@ -38,7 +38,7 @@ int main(int argc, char** argv) {
     std::vector<wr::WheelsetPose> poses;
     for (int step = 0; step < steps; ++step) {
       const double t = 1e-3 * step;
-      auto pose = wr::rigid_contact_pose(track, wheelset, 3e-3 * std::sin(2 * M_PI * t), 2e-3 * std::cos(2 * M_PI * t));
+      auto pose = wr::rigid_contact_pose(track, wheelset, 3e-3 * std::sin(2 * fastnorm::pi<> * t), 2e-3 * std::cos(2 * fastnorm::pi<> * t));
       pose.z += 0.1e-3;
       poses.push_back(pose);
     }

@@ -116,8 +116,8 @@ std::vector<Outcome> find_equilibria(const std::vector<Position>& positions, lon
     for (std::size_t k = next++; k < positions.size(); k = next++) {
       const auto& p = positions[k];
       wr::EquilibriumOptions options;  // NORM
-      options.grid.elements = elements;
-      outcomes[k] = {p, wr::solve_equilibrium(track, wheelset, p.y_mm * 1e-3, p.yaw_deg * M_PI / 180, p.load, options),
+      options.contact.grid.elements = elements;
+      outcomes[k] = {p, wr::solve_equilibrium(track, wheelset, p.y_mm * 1e-3, p.yaw_deg * fastnorm::pi<> / 180, p.load, options),
                      {}};
     }
   };
@@ -131,7 +131,7 @@ std::vector<Outcome> find_equilibria(const std::vector<Position>& positions, lon
 //    once, each reduced solver the median of three. Returns the speed-ups over NORM.
 std::map<std::string, std::vector<double>> compare_solvers(std::vector<Outcome>& outcomes,
                                                            const std::vector<std::string>& solvers) {
-  const fastnorm::Material<double> material(2.1e11, 0.3);
+  const auto material = fastnorm::Material<double>::steel();
   const auto approach = fastnorm::Loading<double>::approach();
   std::map<std::string, std::vector<double>> speedups;
   for (auto& outcome : outcomes) {

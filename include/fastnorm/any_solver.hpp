@@ -14,6 +14,7 @@
 #include "fastnorm/detail/solver_base.hpp"
 #include "fastnorm/norm_solver.hpp"
 #include "fastnorm/reduced_solver.hpp"
+#include "fastnorm/solver_from_spec.hpp"
 #include "fastnorm/solver_spec.hpp"
 #include "fastnorm/warm_start.hpp"
 
@@ -100,21 +101,7 @@ class AnySolver : public detail::SolverBase<AnySolver<Scalar>, AnyWorkspace<Scal
   using Base::solve;
 
   /// @throws fastnorm::invalid_argument for an invalid spec
-  AnySolver(const SolverSpec<Scalar>& spec, const Grid<Scalar>& grid, const Material<Scalar>& material)
-      : spec_(spec) {
-    spec_.validate();
-    using Kind = typename SolverSpec<Scalar>::Kind;
-    switch (spec_.kind) {
-      case Kind::norm: adopt(NormSolver<Scalar>(grid, material, spec_.active_set)); break;
-      case Kind::cg: adopt(CgSolver<Scalar>(grid, material, spec_.cg)); break;
-      case Kind::elliptic: adopt_reduced(grid, material, EllipticBasis()); break;
-      case Kind::polynomial: adopt_reduced(grid, material, PolynomialBasis(spec_.grade)); break;
-      case Kind::elliptic_edge: adopt_reduced(grid, material, EllipticEdgeBasis(EllipticBasis(), spec_.edge_elements)); break;
-      case Kind::polynomial_edge:
-        adopt_reduced(grid, material, PolynomialEdgeBasis(PolynomialBasis(spec_.grade), spec_.edge_elements));
-        break;
-    }
-  }
+  AnySolver(const SolverSpec<Scalar>& spec, const Grid<Scalar>& grid, const Material<Scalar>& material);
 
   /// By name, with default options.
   /// @throws fastnorm::invalid_argument for an unknown name or bad G, K
@@ -173,16 +160,45 @@ class AnySolver : public detail::SolverBase<AnySolver<Scalar>, AnyWorkspace<Scal
   };
 
   template <typename Solver>
-  void adopt(Solver solver) {
-    model_ = std::make_unique<Holder<Solver>>(std::move(solver));
-  }
-  template <typename Basis>
-  void adopt_reduced(const Grid<Scalar>& grid, const Material<Scalar>& material, Basis basis) {
-    adopt(ReducedSolver<Basis, Scalar>(grid, material, std::move(basis), spec_.reduced_options()));
+  void adopt(const Grid<Scalar>& grid, const Material<Scalar>& material) {
+    model_ = std::make_unique<Holder<Solver>>(SolverFromSpec<Solver>::make(spec_, grid, material));
   }
 
   SolverSpec<Scalar> spec_;
   std::unique_ptr<Model> model_;
+};
+
+// Defined out of the class, so not inline: with the explicit instantiation declaration
+// below, a program linked with fastnorm::precompiled does not compile every solver again.
+template <typename Scalar>
+AnySolver<Scalar>::AnySolver(const SolverSpec<Scalar>& spec, const Grid<Scalar>& grid, const Material<Scalar>& material)
+  : spec_(spec) {
+  spec_.validate();
+  using Kind = typename SolverSpec<Scalar>::Kind;
+  switch (spec_.kind) {
+    case Kind::norm: adopt<NormSolver<Scalar>>(grid, material); break;
+    case Kind::cg: adopt<CgSolver<Scalar>>(grid, material); break;
+    case Kind::elliptic: adopt<ReducedSolver<EllipticBasis, Scalar>>(grid, material); break;
+    case Kind::polynomial: adopt<ReducedSolver<PolynomialBasis, Scalar>>(grid, material); break;
+    case Kind::elliptic_edge: adopt<ReducedSolver<EllipticEdgeBasis, Scalar>>(grid, material); break;
+    case Kind::polynomial_edge: adopt<ReducedSolver<PolynomialEdgeBasis, Scalar>>(grid, material); break;
+  }
+}
+
+#ifdef FASTNORM_PRECOMPILED
+// fastnorm::precompiled (CMakeLists.txt) holds AnySolver<double> compiled once, and sets
+// this macro for the programs that link it (docs/contributing.md, compile cost).
+extern template class AnySolver<double>;
+#endif
+
+/// AnySolver solves every kind of spec.
+template <typename Scalar>
+struct SolverFromSpec<AnySolver<Scalar>> {
+  static bool accepts(typename SolverSpec<Scalar>::Kind) { return true; }
+  static AnySolver<Scalar> make(const SolverSpec<Scalar>& spec, const Grid<Scalar>& grid,
+                                const Material<Scalar>& material) {
+    return AnySolver<Scalar>(spec, grid, material);
+  }
 };
 
 }  // namespace fastnorm

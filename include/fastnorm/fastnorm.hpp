@@ -5,6 +5,7 @@
 /// (docs/contributing.md, compile cost).
 
 #include "fastnorm/version.hpp"
+#include "fastnorm/constants.hpp"
 #include "fastnorm/error.hpp"
 #include "fastnorm/hertz.hpp"
 #include "fastnorm/solvers.hpp"

@@ -12,6 +12,7 @@
 
 #include <Eigen/Core>
 
+#include "fastnorm/constants.hpp"
 #include "fastnorm/error.hpp"
 #include "fastnorm/grid.hpp"
 
@@ -61,7 +62,6 @@ void check_radii(Scalar radius_x, Scalar radius_y) {
 /// k ≤ 1 − 1e-12, checked in tests/core/hertz.test.cpp against closed-form values.
 template <typename Scalar>
 std::pair<Scalar, Scalar> complete_elliptic_integrals(Scalar k) {
-  const Scalar pi = Scalar(3.14159265358979323846L);
   Scalar a = 1, b = std::sqrt((1 - k) * (1 + k)), c = k, power = Scalar(0.5), sum = power * c * c;
   for (int step = 0; step < 64 && std::abs(c) > std::numeric_limits<Scalar>::epsilon() * a; ++step) {
     c = (a - b) / 2;
@@ -71,7 +71,7 @@ std::pair<Scalar, Scalar> complete_elliptic_integrals(Scalar k) {
     power *= 2;
     sum += power * c * c;
   }
-  const Scalar first = pi / (2 * a);
+  const Scalar first = pi<Scalar> / (2 * a);
   return {first, first * (1 - sum)};
 }
 
@@ -85,11 +85,10 @@ HertzShape<Scalar> hertz_shape(Scalar radius_x, Scalar radius_y, Scalar combined
                           combined_modulus));
   const Scalar smaller_curvature = 1 / (2 * std::max(radius_x, radius_y));
   const Scalar curvature_ratio = std::max(radius_x, radius_y) / std::min(radius_x, radius_y);
-  const Scalar pi = Scalar(3.14159265358979323846L);
-  auto shape = [pi, smaller_curvature](Scalar e) {
+  auto shape = [smaller_curvature](Scalar e) {
     if (e < Scalar(1e-4)) {  // series: K − E = (π/2)(e²/2 + 3e⁴/16 + …)
-      return HertzShape<Scalar>{smaller_curvature, e, pi / 2 * (1 + e * e / 4),
-                                pi / 4 * (1 + 3 * e * e / 8)};
+      return HertzShape<Scalar>{smaller_curvature, e, pi<Scalar> / 2 * (1 + e * e / 4),
+                                pi<Scalar> / 4 * (1 + 3 * e * e / 8)};
     }
     const auto [k, E] = detail::complete_elliptic_integrals(e);
     return HertzShape<Scalar>{smaller_curvature, e, k, (k - E) / (e * e)};
@@ -112,12 +111,11 @@ HertzShape<Scalar> hertz_shape(Scalar radius_x, Scalar radius_y, Scalar combined
 template <typename Scalar>
 HertzContact<Scalar> hertz_from_long_axis(Scalar radius_x, Scalar radius_y, Scalar combined_modulus,
                                           Scalar a, const HertzShape<Scalar>& shape) {
-  const Scalar pi = Scalar(3.14159265358979323846L);
   const Scalar b = a * std::sqrt(1 - shape.eccentricity * shape.eccentricity);
   HertzContact<Scalar> contact;
   contact.normal_force =
-      a * a * a * 2 * pi * combined_modulus * shape.smaller_curvature / (3 * shape.k_minus_e_over_e2);
-  contact.max_pressure = 3 * contact.normal_force / (2 * pi * a * b);
+      a * a * a * 2 * pi<Scalar> * combined_modulus * shape.smaller_curvature / (3 * shape.k_minus_e_over_e2);
+  contact.max_pressure = 3 * contact.normal_force / (2 * pi<Scalar> * a * b);
   contact.approach = contact.max_pressure * b * shape.k_integral / combined_modulus;
   const bool long_axis_is_x = radius_x >= radius_y;
   contact.semi_axis_x = long_axis_is_x ? a : b;
@@ -139,10 +137,9 @@ HertzContact<Scalar> hertz_from_force(Scalar radius_x, Scalar radius_y, Scalar c
   const auto shape = detail::hertz_shape(radius_x, radius_y, combined_modulus);
   FASTNORM_CHECK(std::isfinite(normal_force) && normal_force > 0,
                  detail::describe("hertz: normal_force must be positive and finite (N)", normal_force));
-  const Scalar pi = Scalar(3.14159265358979323846L);
   // a³ = 3 F (K − E) / (2π E* e² A)   (docs/hertz.md Eq. (H3))
   const Scalar a = std::cbrt(3 * normal_force * shape.k_minus_e_over_e2 /
-                             (2 * pi * combined_modulus * shape.smaller_curvature));
+                             (2 * pi<Scalar> * combined_modulus * shape.smaller_curvature));
   return detail::hertz_from_long_axis(radius_x, radius_y, combined_modulus, a, shape);
 }
 

@@ -10,6 +10,7 @@
 #include <type_traits>
 #include <vector>
 
+#include "fastnorm/constants.hpp"
 #include "fastnorm/detail/memory_check.hpp"
 #include "fastnorm/error.hpp"
 #include "fastnorm/grid.hpp"
@@ -50,8 +51,7 @@ Scalar love_coefficient(Scalar x, Scalar y, Scalar a, Scalar b, Scalar combined_
   const Work xw = static_cast<Work>(x), yw = static_cast<Work>(y), aw = static_cast<Work>(a), bw = static_cast<Work>(b);
   const Work sum = detail::love_primitive(xw + aw, yw + bw) - detail::love_primitive(xw - aw, yw + bw) -
                    detail::love_primitive(xw + aw, yw - bw) + detail::love_primitive(xw - aw, yw - bw);
-  const Work pi = Work(3.14159265358979323846264338327950288L);
-  return static_cast<Scalar>(sum / (pi * Work(combined_modulus)));
+  return static_cast<Scalar>(sum / (pi<Work> * Work(combined_modulus)));
 }
 
 /// The influence coefficients C_kl of a grid: displacement at the centre of element k

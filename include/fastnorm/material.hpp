@@ -50,6 +50,10 @@ class Material {
                                     combined_modulus()));
   }
 
+  /// Steel on steel, E = 210 GPa and ν = 0.3 for both bodies: the default of every model
+  /// and binding of fastnorm.
+  static Material steel() { return Material(Scalar(2.1e11), Scalar(0.3)); }
+
   /// Young's modulus of body 1 or 2 (Pa).
   Scalar young_modulus(int body = 1) const { return young_modulus_[body - 1]; }
   /// Poisson's ratio of body 1 or 2.

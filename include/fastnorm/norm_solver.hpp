@@ -49,7 +49,7 @@ class NormWorkspace {
   /// The Cholesky factor of C_II for the set I last solved on `table`.
   struct Factorisation {
     std::vector<Index> set;
-    std::uint64_t solver = 0;  // detail::new_solver_id() of the solver that factorised
+    std::uint64_t solver = 0;  // detail::new_object_id() of the solver that factorised
     bool valid = false;
     detail::InPlaceCholesky<Scalar> cholesky;
   };
@@ -147,7 +147,7 @@ class NormSolver : public detail::SolverBase<NormSolver<Scalar>, NormWorkspace<S
 
   std::shared_ptr<const InfluenceTable<Scalar>> influence_;
   Options options_;
-  std::uint64_t id_ = detail::new_solver_id();
+  std::uint64_t id_ = detail::new_object_id();
 };
 
 }  // namespace fastnorm

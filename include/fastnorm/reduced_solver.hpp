@@ -52,7 +52,7 @@ class ReducedWorkspace {
   template <typename Basis, typename S>
   friend class ReducedSolver;
   WarmStart<Scalar> start_;
-  std::uint64_t owner_ = 0;  // detail::new_solver_id() of the solver the memory belongs to
+  std::uint64_t owner_ = 0;  // detail::new_object_id() of the solver the memory belongs to
   detail::GalerkinMemory<Scalar> memory_;
   detail::ActiveSetWorkspace<Scalar> loop_;
 };
@@ -126,7 +126,7 @@ class ReducedSolver : public detail::SolverBase<ReducedSolver<Basis, Scalar>, Re
   Options options_;
   // Built on first use; h-independent, so copies share them (thread-safe).
   std::shared_ptr<detail::SegmentTables<Scalar>> tables_;
-  std::uint64_t id_ = detail::new_solver_id();
+  std::uint64_t id_ = detail::new_object_id();
 };
 
 }  // namespace fastnorm

@@ -16,5 +16,6 @@
 #include "fastnorm/bases.hpp"
 #include "fastnorm/reduced_solver.hpp"
 #include "fastnorm/solver_spec.hpp"
+#include "fastnorm/solver_from_spec.hpp"
 #include "fastnorm/any_solver.hpp"
 #include "fastnorm/batch.hpp"

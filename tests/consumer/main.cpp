@@ -1,5 +1,7 @@
 // Solves a small sphere-on-plane problem through the installed package and checks the
-// answer against Hertz: exits 0 only if the force matches within 5 %.
+// answer against Hertz: exits 0 only if the force matches within 5 %. Built with
+// CONSUMER_ANY_SOLVER it chooses NORM at run time through AnySolver, from
+// fastnorm::precompiled.
 #include <fastnorm/fastnorm.hpp>
 
 #include <cmath>
@@ -11,7 +13,12 @@ int main() {
   const fastnorm::Grid<> grid = fastnorm::hertz_grid(hertz, 20, 1.3);
   Eigen::VectorXd h = fastnorm::hertz_undeformed_distance(grid, 0.3, 0.3);
   h.array() -= hertz.approach;
-  const auto solution = fastnorm::NormSolver<>(grid, steel).solve(h, fastnorm::Loading<>::approach());
+#ifdef CONSUMER_ANY_SOLVER
+  const fastnorm::AnySolver<> solver("norm", grid, steel);
+#else
+  const fastnorm::NormSolver<> solver(grid, steel);
+#endif
+  const auto solution = solver.solve(h, fastnorm::Loading<>::approach());
   const double error = std::abs(solution.normal_force / hertz.normal_force - 1);
   std::cout << "fastnorm consumer: Fn = " << solution.normal_force << " N, Hertz "
             << hertz.normal_force << " N, relative difference " << error << "\n";

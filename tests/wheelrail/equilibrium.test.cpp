@@ -14,7 +14,7 @@ namespace {
 
 wr::EquilibriumOptions coarse() {
   wr::EquilibriumOptions options;
-  options.grid.elements = 30;
+  options.contact.grid.elements = 30;
   return options;
 }
 
@@ -83,7 +83,7 @@ TEST_CASE("Yaw moves the right patch back and the left patch forward", "[wheelra
   const wr::Track track;
   const wr::Wheelset wheelset;
   for (double yaw_deg : {1.0, -1.0}) {
-    const auto result = wr::solve_equilibrium(track, wheelset, 0, yaw_deg * M_PI / 180, 2e5, coarse());
+    const auto result = wr::solve_equilibrium(track, wheelset, 0, yaw_deg * fastnorm::pi<> / 180, 2e5, coarse());
     REQUIRE(result.ok());
     for (const auto& contact : result.patches) {
       const auto& patch = contact.patch;
@@ -103,16 +103,16 @@ TEST_CASE("Equilibrium input is checked by name", "[wheelrail][equilibrium]") {
   CHECK_THROWS_WITH(wr::solve_single_wheel(track, wheelset, wr::Side::left, 0, 0, 0), Contains("vertical_force"));
   CHECK_THROWS_WITH(wr::solve_single_wheel(track, wheelset, wr::Side::left, 0, 0, 1e5, {}, 0.3), Contains("roll"));
   auto options = coarse();
-  CHECK_THROWS_WITH(options.solver = fastnorm::SolverSpec<>::parse("spline"), Contains("unknown solver"));
+  CHECK_THROWS_WITH(options.contact.solver = fastnorm::SolverSpec<>::parse("spline"), Contains("unknown solver"));
   options = coarse();
-  options.grid.elements = 2;
+  options.contact.grid.elements = 2;
   CHECK_THROWS_WITH(wr::solve_equilibrium(track, wheelset, 0, 0, 2e5, options), Contains("elements"));
   // Every option is validated up front, by name.
   options = coarse();
   options.force_tolerance = 0;
   CHECK_THROWS_WITH(options.validate(), Contains("force_tolerance"));
   options = coarse();
-  options.search.step = -1;
+  options.contact.search.step = -1;
   CHECK_THROWS_WITH(wr::solve_equilibrium(track, wheelset, 0, 0, 2e5, options), Contains("step"));
   options = coarse();
   options.start = wr::WheelsetPose{0, std::nan(""), 0, 0};
@@ -158,7 +158,7 @@ void check_flange_range(const std::vector<double>& shifts, const std::vector<dou
   const wr::Track track;
   const wr::Wheelset wheelset;
   auto options = coarse();  // full NORM: a reduced basis's force jumps as elements join its
-  options.grid.elements = 20;  // contact set, by more than the force tolerance at times
+  options.contact.grid.elements = 20;  // contact set, by more than the force tolerance at times
   int converged = 0, climbing = 0;
   for (double load : loads) {
     for (double yaw : yaws) {
@@ -208,7 +208,7 @@ TEST_CASE("The equilibrium pressed against the flange is mirror-symmetric", "[wh
   const wr::Track track;
   const wr::Wheelset wheelset;
   auto options = coarse();
-  options.solver = fastnorm::SolverSpec<double>::parse("elliptic");
+  options.contact.solver = fastnorm::SolverSpec<double>::parse("elliptic");
   const auto right = wr::solve_equilibrium(track, wheelset, 6.3e-3, 10e-3, 2e5, options);
   const auto left = wr::solve_equilibrium(track, wheelset, -6.3e-3, -10e-3, 2e5, options);
   REQUIRE(right.ok());
@@ -233,7 +233,7 @@ TEST_CASE("With the Manchester set-up the reference point is CONTACT's at yaw", 
   const wr::Wheelset wheelset(wr::s1002_wheel(), layout);
   auto options = coarse();
   const double shear = 82e9, poisson = 0.28;
-  options.material = fastnorm::Material<double>(2 * shear * (1 + poisson), poisson);
+  options.contact.material = fastnorm::Material<double>(2 * shear * (1 + poisson), poisson);
   struct Case {
     double y_mm, roll;
     double x_right_mm, x_left_mm;
@@ -260,7 +260,7 @@ void compare_with_contact(Eigen::Index elements) {
   const wr::Track track;
   const wr::Wheelset wheelset;
   auto options = coarse();
-  options.grid.elements = elements;
+  options.contact.grid.elements = elements;
   double worst_force = 0, worst_y = 0, worst_angle = 0, worst_z = 0;
   for (const auto& path : files) {
     const auto setup = fastnorm::test::read_wheelrail_case(path);

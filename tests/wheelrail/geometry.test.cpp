@@ -83,7 +83,7 @@ TEST_CASE("Yaw moves the contact along the locus as §6.3 states", "[wheelrail][
   const wr::Track track;
   const wr::Wheelset wheelset;
   for (double sign : {1.0, -1.0}) {
-    const wr::WheelsetPose pose{0, 0, 0, sign * M_PI / 180};
+    const wr::WheelsetPose pose{0, 0, 0, sign * fastnorm::pi<> / 180};
     const auto right = wr::smallest_gap(track, wheelset, wr::Side::right, pose);
     const auto left = wr::smallest_gap(track, wheelset, wr::Side::left, pose);
     CHECK(right.gap * 1e3 == Approx(0.18481).margin(1e-5));
@@ -94,7 +94,7 @@ TEST_CASE("Yaw moves the contact along the locus as §6.3 states", "[wheelrail][
     CHECK(right.wheel.point.y() * 1e3 == Approx(753.603).margin(2e-3));
     CHECK(std::atan(-right.rail_slope) * 1e3 == Approx(23.1).margin(0.1));
   }
-  const auto two_degrees = wr::smallest_gap(track, wheelset, wr::Side::right, {0, 0, 0, 2 * M_PI / 180});
+  const auto two_degrees = wr::smallest_gap(track, wheelset, wr::Side::right, {0, 0, 0, 2 * fastnorm::pi<> / 180});
   CHECK(two_degrees.wheel.point.x() * 1e3 == Approx(-26.027).margin(1e-3));
   CHECK(two_degrees.wheel.profile_y * 1e3 == Approx(4.897).margin(3e-3));
 }
@@ -247,7 +247,7 @@ TEST_CASE("At large yaw the reference point is CONTACT's weighting per lateral t
 TEST_CASE("S1002's flange climbs from the start of its 70 degree flank", "[wheelrail][geometry]") {
   // wheelset-geometry.md §6.2: the rigid contact reaches the 70° flank at y_w = −38.43 mm.
   const wr::Wheelset wheelset;
-  CHECK(wheelset.flange_angle() * 180 / M_PI == Approx(70).margin(1e-3));
+  CHECK(wheelset.flange_angle() * 180 / fastnorm::pi<> == Approx(70).margin(1e-3));
   CHECK(wheelset.flange_climb_point() * 1e3 == Approx(-38.43).margin(0.02));
   CHECK_FALSE(wheelset.at_flange_climb(0));
   CHECK_FALSE(wheelset.at_flange_climb(-30e-3));
@@ -299,8 +299,8 @@ TEST_CASE("The contact search continued from step to step samples as the full sa
     std::array<wr::GapSampler, 2> samplers;
     for (int step = 0; step < 400; ++step) {
       const double t = speed * step * 1e-3;
-      wr::WheelsetPose pose{8e-3 * std::sin(2 * M_PI * t), base.z + 0.2e-3 + 50e-6 * std::sin(2 * M_PI * 8 * t),
-                            2e-3 * std::sin(2 * M_PI * 3 * t), 5e-3 * std::cos(2 * M_PI * t)};
+      wr::WheelsetPose pose{8e-3 * std::sin(2 * fastnorm::pi<> * t), base.z + 0.2e-3 + 50e-6 * std::sin(2 * fastnorm::pi<> * 8 * t),
+                            2e-3 * std::sin(2 * fastnorm::pi<> * 3 * t), 5e-3 * std::cos(2 * fastnorm::pi<> * t)};
       if (step == 200) pose.y += 3e-3;  // a jump
       for (wr::Side side : {wr::Side::left, wr::Side::right}) {
         auto& sampler = samplers[side == wr::Side::right];

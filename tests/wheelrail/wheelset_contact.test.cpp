@@ -40,7 +40,7 @@ TEST_CASE("At the equilibrium pose the model gives the equilibrium's patches", "
   const wr::Track track;
   const wr::Wheelset wheelset;
   wr::EquilibriumOptions equilibrium_options;
-  equilibrium_options.grid.elements = 30;
+  equilibrium_options.contact.grid.elements = 30;
   const auto equilibrium = wr::solve_equilibrium(track, wheelset, 3e-3, 0, 2e5, equilibrium_options);
   REQUIRE(equilibrium.ok());
   auto options = coarse();

@@ -19,22 +19,12 @@
 /// the copy starts empty.
 
 #include <Eigen/Core>
-#include <atomic>
-#include <cstdint>
-
+#include "fastnorm/detail/object_id.hpp"
 #include "fastnorm/detail/workspace_pool.hpp"
 #include "fastnorm/solution.hpp"
 
 namespace fastnorm {
 namespace detail {
-
-/// A number never given to another solver in this process: what a workspace remembers to
-/// know whose factorisations it holds (an address could be reused by a later solver).
-/// Copies of a solver keep its number, since they share its tables.
-inline std::uint64_t new_solver_id() {
-  static std::atomic<std::uint64_t> last{0};
-  return ++last;
-}
 
 template <typename Derived, typename Workspace, typename Scalar>
 class SolverBase {

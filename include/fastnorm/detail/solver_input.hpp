@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "fastnorm/constants.hpp"
 #include "fastnorm/error.hpp"
 #include "fastnorm/grid.hpp"
 #include "fastnorm/solution.hpp"
@@ -41,11 +42,10 @@ Scalar approach_guess(const Eigen::Ref<const Eigen::Matrix<Scalar, Eigen::Dynami
                       Scalar combined_modulus, Scalar normal_force, std::vector<Scalar>& sorted) {
   sorted.assign(h0.data(), h0.data() + h0.size());
   std::sort(sorted.begin(), sorted.end());
-  const Scalar pi = Scalar(3.14159265358979323846L);
   // Force per unit of (δ − min h0) when `overlap_count` elements overlap.
   auto stiffness = [&](std::size_t overlap_count) {
     return Scalar(4) / 3 * combined_modulus *
-           std::sqrt(static_cast<Scalar>(overlap_count) * element_area / (2 * pi));
+           std::sqrt(static_cast<Scalar>(overlap_count) * element_area / (2 * pi<Scalar>));
   };
   for (std::size_t m = 1; m < sorted.size(); ++m) {
     if (stiffness(m) * (sorted[m] - sorted.front()) >= normal_force) {

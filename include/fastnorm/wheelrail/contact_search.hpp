@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <limits>
 #include <optional>
 #include <string>
@@ -134,8 +135,8 @@ class GapSampler {
     auto take = [&](std::size_t k) {
       samples_[k] = gap_at(track, wheelset, side, detail::sample_y(profile, options.step, k), pose, rotation);
     };
-    const bool continued =
-        last_pose_ && track_ == &track && wheelset_ == &wheelset && side_ == side && step_ == options.step;
+    const bool continued = last_pose_ && track_id_ == track.id() && wheelset_id_ == wheelset.id() && side_ == side &&
+                           step_ == options.step;
     if (!continued) start(track, wheelset, side, options.step, count);
     const WheelsetPose last = continued ? *last_pose_ : pose;
     last_pose_ = pose;
@@ -161,7 +162,7 @@ class GapSampler {
                                   : coarse.beyond_rail > drift_limit);
       if (still_far) continue;  // its gap is still ≥ candidate_gap (or it is still off the rail)
       take(k);
-      remember(samples_[k], coarse);
+      remember(samples_[k], wheelset, coarse);
     }
     for (std::size_t first = 0; first < count; first += coarse_stride) {
       const std::size_t last_k = std::min(first + coarse_stride, count);
@@ -195,20 +196,19 @@ class GapSampler {
 
   /// A cold start: every coarse sample to be taken, the slope table of a new track.
   void start(const Track& track, const Wheelset& wheelset, Side side, double step, std::size_t count) {
-    if (track_ != &track) build_slope_bins(track);
-    track_ = &track, wheelset_ = &wheelset, side_ = side, step_ = step;
+    if (track_id_ != track.id()) build_slope_bins(track);
+    track_id_ = track.id(), wheelset_id_ = wheelset.id(), side_ = side, step_ = step;
     coarse_.assign(count / coarse_stride + 1 + (count % coarse_stride != 0), Coarse{});
   }
 
-  void remember(const GapSample& sample, Coarse& coarse) const {
+  void remember(const GapSample& sample, const Wheelset& wheelset, Coarse& coarse) const {
     coarse.gap = sample.gap;
     coarse.drift = 0;
     coarse.radius = sample.wheel.radius;
     coarse.radius_slope = sample.wheel.radius_slope;
-    coarse.reach = std::hypot(sample.wheel.radius, wheelset_->axle_coordinate(side_, sample.wheel.profile_y));
+    coarse.reach = std::hypot(sample.wheel.radius, wheelset.axle_coordinate(side_, sample.wheel.profile_y));
     const double y = side_sign(side_) * sample.wheel.point.y();  // on the right rail
-    const auto [first_y, last_y] = track_->right_rail_span();
-    coarse.beyond_rail = std::max(first_y - y, y - last_y);
+    coarse.beyond_rail = std::max(rail_first_y_ - y, y - rail_last_y_);
     coarse.slope_bound = std::isfinite(sample.gap) ? slope_near(y) : 0;
   }
 
@@ -217,6 +217,7 @@ class GapSampler {
   /// for what lies between them (the rail is a smooth spline), then the bin and its neighbours.
   void build_slope_bins(const Track& track) {
     const auto [first_y, last_y] = track.right_rail_span();
+    rail_first_y_ = first_y, rail_last_y_ = last_y;
     const auto bins = static_cast<std::size_t>(std::ceil((last_y - first_y) / drift_limit));
     slope_bins_.assign(bins, 0);
     for (std::size_t b = 0; b < bins; ++b) {
@@ -230,8 +231,7 @@ class GapSampler {
   }
 
   double slope_near(double y) const {
-    const double first_y = track_->right_rail_span().first;
-    const auto bin = static_cast<std::ptrdiff_t>(std::floor((y - first_y) / drift_limit));
+    const auto bin = static_cast<std::ptrdiff_t>(std::floor((y - rail_first_y_) / drift_limit));
     double bound = 0;
     for (std::ptrdiff_t b = bin - 1; b <= bin + 1; ++b) {
       if (b >= 0 && b < static_cast<std::ptrdiff_t>(slope_bins_.size())) {
@@ -241,8 +241,9 @@ class GapSampler {
     return bound;
   }
 
-  const Track* track_ = nullptr;
-  const Wheelset* wheelset_ = nullptr;
+  // Whose samples these are: Track::id() and Wheelset::id() (0: none yet).
+  std::uint64_t track_id_ = 0, wheelset_id_ = 0;
+  double rail_first_y_ = 0, rail_last_y_ = 0;  // the right rail's span of the slope table (m)
   Side side_ = Side::right;
   double step_ = 0;
   std::optional<WheelsetPose> last_pose_;
@@ -300,10 +301,12 @@ inline GapSample smallest_gap(const Track& track, const Wheelset& wheelset, Side
 /// in y_track between its neighbours), which at large yaw is not proportional to the
 /// profile step (docs/wheel-rail.md §4, item 4).
 ///
-/// Into `regions`, by increasing y_w, from the samples of `sampler` (which continues from
-/// its previous call). Both keep their storage from call to call (with the regions'
-/// slices), so a time loop's search stops allocating.
-inline void contact_regions(const Track& track, const Wheelset& wheelset, Side side, const WheelsetPose& pose,
+/// Into the first regions of `regions`, by increasing y_w, from the samples of `sampler`
+/// (which continues from its previous call); returns how many. The regions after those are
+/// spares: `regions` never shrinks, so that it and its regions' slices keep their storage
+/// from call to call, also when the patch count drops, and a time loop's search stops
+/// allocating.
+inline std::size_t contact_regions(const Track& track, const Wheelset& wheelset, Side side, const WheelsetPose& pose,
                             const SearchOptions& options, GapSampler& sampler, std::vector<ContactRegion>& regions) {
   const std::vector<GapSample>& samples = sampler.sample(track, wheelset, side, pose, options);
   std::size_t count = 0;  // regions in use; the others keep their storage until the end
@@ -371,7 +374,7 @@ inline void contact_regions(const Track& track, const Wheelset& wheelset, Side s
     if (kept != r) std::swap(regions[kept], region);
     ++kept;
   }
-  regions.resize(kept);
+  return kept;
 }
 
 /// The same, returned.
@@ -379,7 +382,7 @@ inline std::vector<ContactRegion> contact_regions(const Track& track, const Whee
                                                   const WheelsetPose& pose, const SearchOptions& options = {}) {
   GapSampler sampler;
   std::vector<ContactRegion> regions;
-  contact_regions(track, wheelset, side, pose, options, sampler, regions);
+  regions.resize(contact_regions(track, wheelset, side, pose, options, sampler, regions));
   return regions;
 }
 

@@ -9,11 +9,13 @@
 #include <cmath>
 #include <optional>
 #include <string>
-#include <tuple>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
 #include "fastnorm/any_solver.hpp"
+#include "fastnorm/bases.hpp"
+#include "fastnorm/reduced_solver.hpp"
 #include "fastnorm/solver_spec.hpp"
 #include "fastnorm/error.hpp"
 #include "fastnorm/material.hpp"
@@ -25,13 +27,14 @@ namespace fastnorm::wheelrail {
 
 /// Settings of an equilibrium search.
 struct EquilibriumOptions {
-  SolverSpec<double> solver;       ///< the patch solver (NORM with default options by default)
-  /// Element sizes: element_length and element_width if both are given (m), else what
-  /// `elements` gives across the largest patch near the equilibrium (docs/wheel-rail.md §5).
-  PatchGridOptions grid;
-  SearchOptions search;            ///< contact search and patch merging
-  /// Elastic constants of wheel (body 1) and rail (body 2); steel for both by default.
-  Material<double> material{2.1e11, 0.3};
+  /// The contact model the search evaluates: its patch solver (NORM by default), element
+  /// sizes, contact search and materials. Element sizes: contact.grid's element_length and
+  /// element_width if both are given (m), else what `contact.grid.elements` gives across the
+  /// largest patch near the equilibrium (docs/wheel-rail.md §5). The search sets the rest
+  /// for its own needs: grids centred on the contact reference points (snap_to_lattice
+  /// off), reduced solves that do not depend on their history (reduced_warm_start off), and
+  /// each patch's stiffness on (the Newton Jacobian); reference_pose is not used.
+  WheelsetContactOptions contact;
   double force_tolerance = 1e-6;   ///< |vertical residual| ≤ tol·load and |roll moment| ≤ tol·load·d
   int max_iterations = 40;         ///< contact evaluations in all (each solves every loaded patch once)
   /// First guess of a wheel's elastic approach at 100 kN (m), scaled as Hertz (N^(2/3)).
@@ -43,14 +46,10 @@ struct EquilibriumOptions {
 
   /// @throws fastnorm::invalid_argument naming the offending field
   void validate() const {
-    solver.validate();
-    grid.validate();
-    search.validate();
+    contact.validate();
     using fastnorm::detail::check_positive;
     check_positive(force_tolerance, "EquilibriumOptions: force_tolerance");
     check_positive(approach_at_100kN, "EquilibriumOptions: approach_at_100kN (m)");
-    FASTNORM_CHECK((grid.element_length > 0) == (grid.element_width > 0),
-                   "EquilibriumOptions: give both grid.element_length and grid.element_width, or neither");
     FASTNORM_CHECK(max_iterations >= 1,
                    fastnorm::detail::describe("EquilibriumOptions: max_iterations must be >= 1", max_iterations));
     if (start) check_pose(*start, "EquilibriumOptions: start");
@@ -127,31 +126,12 @@ class EquilibriumSearch {
       : track_(track), wheelset_(wheelset), sides_(std::move(sides)), load_(load), options_(options) {}
 
   Equilibrium run(WheelsetPose pose) {
-    SolverSpec<double> sizing_solver = options_.solver;  // its active-set options and table budget
+    SolverSpec<double> sizing_solver = options_.contact.solver;  // its active-set options and table budget
     sizing_solver.kind = SolverSpec<double>::Kind::elliptic;
-    const std::pair<const SolverSpec<double>&, double> stages[] = {
-        {sizing_solver, std::max(sizing_tolerance, options_.force_tolerance)},
-        {options_.solver, options_.force_tolerance}};
-    std::optional<WheelsetContact<Solver>> model;
-    for (const auto& [solver, tolerance] : stages) {
-      const auto sizes = element_sizes_at(pose);
-      if (!sizes) return finish(EquilibriumStatus::lost_contact, pose);
-      model.emplace(track_, wheelset_, contact_options(*sizes, solver));
-      const Step outcome = newton(*model, pose, tolerance);
-      if (outcome == Step::balanced) continue;
-      if (!climb_.empty()) {
-        result_.message = climb_ + "; no equilibrium found";
-        return finish(EquilibriumStatus::flange_climb, pose);
-      }
-      switch (outcome) {
-        case Step::lost_contact: return finish(EquilibriumStatus::lost_contact, pose);
-        case Step::solver_failed: return finish(EquilibriumStatus::solver_failed, pose);
-        default:
-          result_.message = "no equilibrium within " + std::to_string(options_.max_iterations) + " steps";
-          return finish(EquilibriumStatus::not_converged, pose);
-      }
+    if (!stage<SizingSolver>(sizing_solver, std::max(sizing_tolerance, options_.force_tolerance), pose, false) ||
+        !stage<Solver>(options_.contact.solver, options_.force_tolerance, pose, true)) {
+      return finish(failure_, pose);
     }
-    store();  // the last stage's patches, which the model holds
     for (const PatchContact& patch : result_.patches) {
       if (wheelset_.at_flange_climb(patch.profile_y)) {
         result_.message = on_flange(patch);
@@ -164,30 +144,53 @@ class EquilibriumSearch {
  private:
   enum class Step { balanced, out_of_steps, lost_contact, solver_failed };
 
-  /// The element sizes at `pose`: given, or from the loaded wheels' patches; none (and a
-  /// message) when a loaded wheel does not touch its rail.
-  std::optional<std::pair<double, double>> element_sizes_at(const WheelsetPose& pose) {
-    std::vector<PatchExtent> extents;
-    for (Side side : sides_) {
-      const std::size_t before = extents.size();
-      detail::append_patch_extents(track_, wheelset_, side, pose, options_.search, extents);
-      if (extents.size() == before) {
-        result_.message = std::string("the ") + to_string(side) + " wheel does not touch its rail";
-        return std::nullopt;
-      }
+  /// The first stage's solver: the elliptic basis, of the same family as `Solver` (a program
+  /// that names its solver does not compile AnySolver).
+  using SizingSolver = std::conditional_t<std::is_same_v<Solver, AnySolver<double>>, AnySolver<double>,
+                                          ReducedSolver<EllipticBasis, double>>;
+
+  /// One stage: element sizes from the patches at `pose`, a model with `solver`, Newton to
+  /// `tolerance`; `pose` ends at the last accepted pose. False (and failure_ set) when the
+  /// stage did not balance; after the `last` stage the result holds its patches.
+  template <typename StageSolver>
+  bool stage(const SolverSpec<double>& solver, double tolerance, WheelsetPose& pose, bool last) {
+    const auto sizes =
+        detail::element_sizes_at(track_, wheelset_, pose, sides_, options_.contact.search, options_.contact.grid);
+    if (sizes.untouched) {
+      result_.message = std::string("the ") + to_string(*sizes.untouched) + " wheel does not touch its rail";
+      failure_ = EquilibriumStatus::lost_contact;
+      return false;
     }
-    return element_sizes(extents, options_.grid);
+    WheelsetContact<StageSolver> model(track_, wheelset_, contact_options(sizes, solver));
+    const Step outcome = newton(model, pose, tolerance);
+    if (outcome == Step::balanced) {
+      if (last) store();  // the patches, which the model holds
+      return true;
+    }
+    if (!climb_.empty()) {
+      result_.message = climb_ + "; no equilibrium found";
+      failure_ = EquilibriumStatus::flange_climb;
+      return false;
+    }
+    switch (outcome) {
+      case Step::lost_contact: failure_ = EquilibriumStatus::lost_contact; break;
+      case Step::solver_failed: failure_ = EquilibriumStatus::solver_failed; break;
+      default:
+        result_.message = "no equilibrium within " + std::to_string(options_.max_iterations) + " steps";
+        failure_ = EquilibriumStatus::not_converged;
+    }
+    return false;
   }
 
-  WheelsetContactOptions contact_options(std::pair<double, double> sizes, const SolverSpec<double>& solver) const {
-    WheelsetContactOptions contact;
+  WheelsetContactOptions contact_options(const detail::ElementSizes& sizes, const SolverSpec<double>& solver) const {
+    WheelsetContactOptions contact = options_.contact;
     contact.solver = solver;
-    contact.grid = options_.grid;
-    std::tie(contact.grid.element_length, contact.grid.element_width) = sizes;
-    contact.search = options_.search;
-    contact.material = options_.material;
+    contact.grid.element_length = sizes.length;
+    contact.grid.element_width = sizes.width;
+    contact.reference_pose.reset();
     contact.snap_to_lattice = false;     // grids centred on the contact reference points, as CONTACT's
     contact.reduced_warm_start = false;  // a reduced answer that does not depend on the path to it
+    contact.stiffness = true;            // the Newton Jacobian
     return contact;
   }
 
@@ -200,7 +203,8 @@ class EquilibriumSearch {
   /// (more residual, a loaded wheel without contact, or a failed solve at the trial pose)
   /// returns to the accepted pose with a quarter of the length and from then on takes the
   /// Jacobian from finite differences at each accepted pose.
-  Step newton(WheelsetContact<Solver>& model, WheelsetPose& pose, double tolerance) {
+  template <typename Model>
+  Step newton(Model& model, WheelsetPose& pose, double tolerance) {
     if (result_.iterations >= options_.max_iterations) return Step::out_of_steps;
     ++result_.iterations;
     if (const auto failed = evaluate(model, pose)) return *failed;
@@ -254,7 +258,8 @@ class EquilibriumSearch {
   /// ∂R/∂(z, roll) at `pose` (whose residual is `residual`) by forward differences, two
   /// evaluations: a drop of difference_length, and a roll lowering the less loaded wheel
   /// by as much at the taping line, so that neither loses contact.
-  std::optional<Step> difference_jacobian(WheelsetContact<Solver>& model, const WheelsetPose& pose,
+  template <typename Model>
+  std::optional<Step> difference_jacobian(Model& model, const WheelsetPose& pose,
                                           const Eigen::Vector2d& residual, Eigen::Matrix2d& jacobian) {
     const double roll_sign = with_roll() && load_on(Side::right) < load_on(Side::left) ? 1.0 : -1.0;
     const Eigen::Vector2d moves(difference_length, roll_sign * difference_length / half_gauge());
@@ -299,7 +304,8 @@ class EquilibriumSearch {
   }
 
   /// The loaded wheels' patches at `pose` and the residuals; a failure step, if any.
-  std::optional<Step> evaluate(WheelsetContact<Solver>& model, const WheelsetPose& pose) {
+  template <typename Model>
+  std::optional<Step> evaluate(Model& model, const WheelsetPose& pose) {
     patches_.clear();
     const WheelsetContactResult* both = with_roll() ? &model.evaluate(pose) : nullptr;
     for (Side side : sides_) {
@@ -394,6 +400,7 @@ class EquilibriumSearch {
   double load_;
   const EquilibriumOptions& options_;
   Equilibrium result_;
+  EquilibriumStatus failure_ = EquilibriumStatus::not_converged;  // why a stage did not balance
   std::string climb_;  // what the search last saw of flange climb (empty: nothing)
   // The last evaluation: the loaded wheels' patches (in the model's result), their forces,
   // stiffnesses dFn/dδ, cos δ and lever arms L, and the residuals (vertical, roll).
@@ -418,8 +425,10 @@ inline void check_load(double load, const char* load_name) {
 /// The wheelset at rest under `load` (N, on the wheelset centre, downward) at lateral shift
 /// y (m) and yaw (rad): z and roll such that the rails carry the load with no roll moment.
 /// Starts from the rigid two-wheel contact (rigid_contact_pose) lowered by a Hertz estimate.
-/// `Solver` (AnySolver by default: instantiated only when this is called) is the solver of
-/// the WheelsetContact<Solver> that the search evaluates.
+/// `Solver` is the solver type of the WheelsetContact<Solver> that the search evaluates:
+/// AnySolver by default (every kind of options.contact.solver), or a named one such as
+/// NormSolver<>, whose program then compiles that solver and the elliptic basis of the
+/// first stage only.
 /// @throws fastnorm::invalid_argument for bad y, yaw, load or options
 template <typename Solver = AnySolver<double>>
 Equilibrium solve_equilibrium(const Track& track, const Wheelset& wheelset, double y, double yaw, double load,
@@ -427,12 +436,13 @@ Equilibrium solve_equilibrium(const Track& track, const Wheelset& wheelset, doub
   check_pose({y, 0, 0, yaw}, "equilibrium");
   detail::check_load(load, "load");
   options.validate();
+  check_spec_for<Solver>(options.contact.solver, "EquilibriumOptions: contact.solver");
   WheelsetPose start{y, 0, 0, yaw};
   if (options.start) {
     start.z = options.start->z;
     start.roll = options.start->roll;
   } else {
-    start = rigid_contact_pose(track, wheelset, y, yaw, options.search);
+    start = rigid_contact_pose(track, wheelset, y, yaw, options.contact.search);
     start.z += detail::approach_guess(load / 2, options);
   }
   return detail::EquilibriumSearch<Solver>(track, wheelset, {Side::left, Side::right}, load, options).run(start);
@@ -447,9 +457,10 @@ Equilibrium solve_single_wheel(const Track& track, const Wheelset& wheelset, Sid
   check_pose({y, 0, roll, yaw}, "solve_single_wheel");
   detail::check_load(vertical_force, "vertical_force");
   options.validate();
+  check_spec_for<Solver>(options.contact.solver, "EquilibriumOptions: contact.solver");
   WheelsetPose start{y, 0, roll, yaw};
   start.z = options.start ? options.start->z
-                          : smallest_gap(track, wheelset, side, start, options.search).gap +
+                          : smallest_gap(track, wheelset, side, start, options.contact.search).gap +
                                 detail::approach_guess(vertical_force, options);
   return detail::EquilibriumSearch<Solver>(track, wheelset, {side}, vertical_force, options).run(start);
 }

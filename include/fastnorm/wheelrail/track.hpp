@@ -4,9 +4,11 @@
 /// (docs/wheel-rail.md §3).
 
 #include <cmath>
+#include <cstdint>
 #include <optional>
 #include <utility>
 
+#include "fastnorm/detail/object_id.hpp"
 #include "fastnorm/error.hpp"
 #include "fastnorm/wheelrail/profile_curve.hpp"
 
@@ -72,6 +74,10 @@ class Track {
     last_y_ = canted_y(rail_.y_max) + shift_y_;
   }
 
+  /// This track's identity: a number no other track of the process has; a copy keeps it (the
+  /// data is the same and never changes). What keeps state about a track (a contact search's
+  /// tables) knows it by this number, never by its address.
+  std::uint64_t id() const { return id_; }
   const TrackLayout& layout() const { return layout_; }
 
   /// Where the right rail's profile begins and ends across the track (m; the left rail's
@@ -138,6 +144,7 @@ class Track {
 
   ProfileCurve rail_;
   TrackLayout layout_;
+  std::uint64_t id_ = fastnorm::detail::new_object_id();
   double cos_ = 1, sin_ = 0;
   double shift_y_ = 0, shift_z_ = 0;
   double first_y_ = 0, last_y_ = 0;  // y of the right rail's first and last profile points

@@ -5,10 +5,12 @@
 #include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <optional>
 #include <string>
 
+#include "fastnorm/detail/object_id.hpp"
 #include "fastnorm/error.hpp"
 #include "fastnorm/wheelrail/profile_curve.hpp"
 #include "fastnorm/wheelrail/track.hpp"
@@ -85,6 +87,10 @@ class Wheelset {
     find_flange_climb_point();
   }
 
+  /// This wheelset's identity: a number no other wheelset of the process has; a copy keeps it (the
+  /// data is the same and never changes). What keeps state about a wheelset (a contact search's
+  /// tables) knows it by this number, never by its address.
+  std::uint64_t id() const { return id_; }
   const WheelsetLayout& layout() const { return layout_; }
   const ProfileCurve& profile() const { return wheel_; }
 
@@ -170,6 +176,7 @@ class Wheelset {
 
   ProfileCurve wheel_;
   WheelsetLayout layout_;
+  std::uint64_t id_ = fastnorm::detail::new_object_id();
   double flange_angle_ = 0, climb_point_ = 0, tip_direction_ = -1;
 };
 

@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "fastnorm/any_solver.hpp"
+#include "fastnorm/solver_from_spec.hpp"
 #include "fastnorm/error.hpp"
 #include "fastnorm/material.hpp"
 #include "fastnorm/solver_spec.hpp"
@@ -28,13 +29,15 @@ namespace fastnorm::wheelrail {
 
 /// Settings of a WheelsetContact, fixed for its life.
 struct WheelsetContactOptions {
-  SolverSpec<double> solver;      ///< the patch solver (NORM by default)
+  /// The patch solver and its settings (NORM by default). With a model of a named solver
+  /// type (WheelsetContact<NormSolver<>>, …) its kind must be that type's.
+  SolverSpec<double> solver;
   /// Element sizes: element_length and element_width if both are given (m), else the sizes
   /// that put `elements` across the largest patch at `reference_pose`.
   PatchGridOptions grid;
   SearchOptions search;           ///< contact search and patch merging
   /// Elastic constants of wheel (body 1) and rail (body 2); steel for both by default.
-  Material<double> material{2.1e11, 0.3};
+  Material<double> material = Material<double>::steel();
   /// Where the element sizes are chosen when not given; by default the rigid two-wheel
   /// contact at y = 0, yaw = 0 lowered by `reference_approach`.
   std::optional<WheelsetPose> reference_pose;
@@ -118,6 +121,33 @@ struct PatchContact {
   bool ok() const { return solution.ok(); }
 };
 
+/// Whether a step (an evaluate) gave every patch a usable answer, and if not, the first
+/// patch that failed and why. Default-constructed: not_solved (nothing evaluated yet).
+struct StepStatus {
+  enum class Code {
+    not_solved,    ///< no evaluate has filled it
+    ok,            ///< every patch solved with a usable answer (Solution::ok)
+    patch_failed,  ///< a patch solve did not give a usable answer: `side`, `patch`, `solver_status`
+  };
+  Code code = Code::not_solved;
+  Side side = Side::left;     ///< the wheel of the failed patch
+  int patch = -1;             ///< its index in that wheel's patches (tread first); -1 if none failed
+  Status solver_status = Status::not_solved;  ///< the failed patch's Solution::status
+  /// Empty when ok; else e.g. "right wheel, patch 1 of 2: numerical issue: …".
+  std::string message;
+
+  bool ok() const { return code == Code::ok; }
+};
+
+inline const char* to_string(StepStatus::Code code) {
+  switch (code) {
+    case StepStatus::Code::not_solved: return "not solved";
+    case StepStatus::Code::ok: return "ok";
+    case StepStatus::Code::patch_failed: return "patch failed";
+  }
+  return "unknown";
+}
+
 /// Wall-clock time of the three stages of one wheel's evaluation (s).
 struct StageTimes {
   double search = 0;    ///< contact search, patch frames and grids
@@ -137,10 +167,9 @@ struct WheelContact {
   /// (Wheelset::at_flange_climb): the wheel is at flange climb.
   bool flange_climb = false;
   StageTimes times;
+  StepStatus status;  ///< this wheel's: ok, or its first failed patch
 
-  bool ok() const {
-    return std::all_of(patches.begin(), patches.end(), [](const PatchContact& patch) { return patch.ok(); });
-  }
+  bool ok() const { return status.ok(); }
 };
 
 /// Both wheels at one pose.
@@ -149,10 +178,11 @@ struct WheelsetContactResult {
   std::array<WheelContact, 2> wheels;                ///< left, right
   Eigen::Vector3d force = Eigen::Vector3d::Zero();   ///< on the wheelset (N)
   Eigen::Vector3d moment = Eigen::Vector3d::Zero();  ///< about its centre (N·m)
+  StepStatus status;  ///< ok, or the first failed patch (left wheel first)
 
   const WheelContact& wheel(Side side) const { return wheels[side == Side::right ? 1 : 0]; }
   /// Every patch solved with a usable answer.
-  bool ok() const { return wheels[0].ok() && wheels[1].ok(); }
+  bool ok() const { return status.ok(); }
   /// A wheel at flange climb.
   bool flange_climb() const { return wheels[0].flange_climb || wheels[1].flange_climb; }
 };
@@ -185,17 +215,50 @@ inline Eigen::Vector3d cross(const Eigen::Vector3d& a, const Eigen::Vector3d& b)
   return {a.y() * b.z() - a.z() * b.y(), a.z() * b.x() - a.x() * b.z(), a.x() * b.y() - a.y() * b.x()};
 }
 
+/// `used` resized to `count` elements without freeing any element's storage: those beyond
+/// `count` move to `spare`, and a growing `used` takes them back from it before making new
+/// ones (so a patch count that drops and rises again allocates nothing).
+template <typename T>
+void resize_keeping_storage(std::vector<T>& used, std::vector<T>& spare, std::size_t count) {
+  while (used.size() > count) {
+    spare.push_back(std::move(used.back()));
+    used.pop_back();
+  }
+  while (used.size() < count) {
+    if (spare.empty()) {
+      used.emplace_back();
+    } else {
+      used.push_back(std::move(spare.back()));
+      spare.pop_back();
+    }
+  }
+}
+
 inline double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-/// Appends the extents of the contact patches of the wheel of `side` at `pose` (none when it
-/// does not touch its rail); element_sizes takes them.
-inline void append_patch_extents(const Track& track, const Wheelset& wheelset, Side side, const WheelsetPose& pose,
-                                 const SearchOptions& search, std::vector<PatchExtent>& extents) {
-  for (const auto& region : contact_regions(track, wheelset, side, pose, search)) {
-    extents.push_back(patch_extent(patch_frame(track, region), region));
+/// The element sizes (dx, ds) that `grid` asks for at `pose` (given sizes, or `elements`
+/// across the largest patch of the wheels of `sides`), or the first of `sides` whose wheel
+/// does not touch its rail there. The one place element sizes are chosen: by the model at
+/// its reference pose and by each stage of the equilibrium.
+struct ElementSizes {
+  double length = 0, width = 0;  ///< dx, ds (m); 0 when a wheel does not touch
+  std::optional<Side> untouched;
+};
+
+inline ElementSizes element_sizes_at(const Track& track, const Wheelset& wheelset, const WheelsetPose& pose,
+                                     const std::vector<Side>& sides, const SearchOptions& search,
+                                     const PatchGridOptions& grid) {
+  if (grid.element_length > 0) return {grid.element_length, grid.element_width, std::nullopt};
+  std::vector<PatchExtent> extents;
+  for (Side side : sides) {
+    const auto regions = contact_regions(track, wheelset, side, pose, search);
+    if (regions.empty()) return {0, 0, side};
+    for (const auto& region : regions) extents.push_back(patch_extent(patch_frame(track, region), region));
   }
+  const auto [length, width] = element_sizes(extents, grid);
+  return {length, width, std::nullopt};
 }
 
 }  // namespace detail
@@ -213,23 +276,31 @@ inline void append_patch_extents(const Track& track, const Wheelset& wheelset, S
 /// }
 /// @endcode
 ///
-/// `Solver` is AnySolver by default (instantiated only when used); any solver of the
-/// concept of docs/architecture.md §2 with `normal_stiffness` will do.
+/// `Solver` is AnySolver by default: every kind of options.solver, and every solver compiled
+/// in. A program that needs one solver names it, `WheelsetContact<NormSolver<>>`, and
+/// compiles that one only (docs/contributing.md, compile cost): any solver type of the
+/// concept of docs/architecture.md §2 with `normal_stiffness` and a SolverFromSpec
+/// (solver_from_spec.hpp) will do.
 template <typename Solver = AnySolver<double>>
 class WheelsetContact {
  public:
   using Workspace = typename Solver::Workspace;
 
-  /// Keeps references to `track` and `wheelset`: they must outlive the model.
-  /// @throws fastnorm::invalid_argument for invalid options, or a reference pose with no
-  ///         contact on a wheel
-  WheelsetContact(const Track& track, const Wheelset& wheelset, WheelsetContactOptions options = {})
-      : track_(track), wheelset_(wheelset), options_(std::move(options)) {
+  /// The model keeps its own copies of `track` and `wheelset` (cheap: a track and a wheelset
+  /// hold a profile each), so nothing it uses can dangle; move them in to save the copy.
+  /// @throws fastnorm::invalid_argument for invalid options (a solver spec of a kind that
+  ///         `Solver` does not solve among them), or a reference pose at which a wheel does
+  ///         not touch its rail
+  WheelsetContact(Track track, Wheelset wheelset, WheelsetContactOptions options = {})
+      : track_(std::move(track)), wheelset_(std::move(wheelset)), options_(std::move(options)) {
     options_.validate();
+    check_spec_for<Solver>(options_.solver, "WheelsetContactOptions: solver");
     choose_element_sizes();
   }
 
   const WheelsetContactOptions& options() const { return options_; }
+  const Track& track() const { return track_; }
+  const Wheelset& wheelset() const { return wheelset_; }
   /// The fixed element sizes (m): rolling dx, lateral ds.
   double element_length() const { return dx_; }
   double element_width() const { return ds_; }
@@ -245,11 +316,13 @@ class WheelsetContact {
     result_.pose = pose;
     result_.force.setZero();
     result_.moment.setZero();
+    result_.status = StepStatus{StepStatus::Code::ok, Side::left, -1, Status::not_solved, {}};
     for (Side side : {Side::left, Side::right}) {
       WheelContact& wheel = result_.wheels[side == Side::right ? 1 : 0];
       evaluate_wheel(side, pose, wheel);
       result_.force += wheel.force;
       result_.moment += wheel.moment;
+      if (result_.status.ok() && !wheel.status.ok()) result_.status = wheel.status;
     }
     return result_;
   }
@@ -270,7 +343,7 @@ class WheelsetContact {
     for (auto& sampler : samplers_) sampler.reset();
     for (auto& states : states_) {
       keep_spare_workspaces(states);
-      states.clear();
+      detail::resize_keeping_storage(states, spare_states_, 0);
     }
   }
 
@@ -278,39 +351,34 @@ class WheelsetContact {
   using State = detail::PatchState<Workspace>;
 
   void choose_element_sizes() {
-    if (options_.grid.element_length > 0) {
-      dx_ = options_.grid.element_length;
-      ds_ = options_.grid.element_width;
-      return;
-    }
     WheelsetPose pose;
     if (options_.reference_pose) {
       pose = *options_.reference_pose;
-    } else {
+    } else if (!(options_.grid.element_length > 0)) {
       pose = rigid_contact_pose(track_, wheelset_, 0, 0, options_.search);
       pose.z += options_.reference_approach;
     }
-    std::vector<PatchExtent> extents;
-    for (Side side : {Side::left, Side::right}) {
-      detail::append_patch_extents(track_, wheelset_, side, pose, options_.search, extents);
-    }
-    FASTNORM_CHECK(!extents.empty(), "WheelsetContact: no contact at the reference pose to choose element sizes from");
-    std::tie(dx_, ds_) = element_sizes(extents, options_.grid);
+    const auto sizes = detail::element_sizes_at(track_, wheelset_, pose, {Side::left, Side::right}, options_.search,
+                                                options_.grid);
+    FASTNORM_CHECK(!sizes.untouched, std::string("WheelsetContact: the ") + to_string(*sizes.untouched) +
+                                         " wheel does not touch its rail at the reference pose, where the element "
+                                         "sizes are chosen");
+    dx_ = sizes.length, ds_ = sizes.width;
   }
 
   /// Search, frames and grids, h, then a solve per patch started from its predecessors.
   void evaluate_wheel(Side side, const WheelsetPose& pose, WheelContact& wheel) {
     auto clock = std::chrono::steady_clock::now();
     wheel.side = side;
-    std::vector<ContactRegion>& regions = regions_;
+    const std::vector<ContactRegion>& regions = regions_;
     const std::size_t w = side == Side::right ? 1 : 0;
-    contact_regions(track_, wheelset_, side, pose, options_.search, samplers_[w], regions);
+    const std::size_t count = contact_regions(track_, wheelset_, side, pose, options_.search, samplers_[w], regions_);
     std::vector<State>& previous = states_[w];
     std::vector<State>& next = next_states_[w];  // storage of the call before the last
-    next.resize(regions.size());
-    const auto& successors = match(regions, previous, wheel);
+    detail::resize_keeping_storage(next, spare_states_, count);
+    const auto& successors = match(regions, count, previous, wheel);
     wheel.flange_climb = false;
-    for (std::size_t k = 0; k < regions.size(); ++k) {
+    for (std::size_t k = 0; k < count; ++k) {
       wheel.patches[k].centre = regions[k].centre;
       wheel.patches[k].profile_y = regions[k].profile_y;
       wheel.flange_climb = wheel.flange_climb || wheelset_.at_flange_climb(regions[k].profile_y);
@@ -319,7 +387,7 @@ class WheelsetContact {
     wheel.times.search = detail::seconds_since(clock);
 
     clock = std::chrono::steady_clock::now();
-    for (std::size_t k = 0; k < regions.size(); ++k) {
+    for (std::size_t k = 0; k < count; ++k) {
       auto& patch = wheel.patches[k].patch;
       patch.frame = next[k].frame;
       patch.grid = next[k].grid;
@@ -331,12 +399,20 @@ class WheelsetContact {
     wheel.force.setZero();
     wheel.moment.setZero();
     wheel.normal_force = 0;
-    for (std::size_t k = 0; k < regions.size(); ++k) {
+    wheel.status = StepStatus{StepStatus::Code::ok, side, -1, Status::not_solved, {}};
+    for (std::size_t k = 0; k < count; ++k) {
       start_from(successors[k], previous, next[k]);
+      const PatchContact& patch = wheel.patches[k];
       solve_patch(pose, next[k], wheel.patches[k]);
-      wheel.force += wheel.patches[k].force;
-      wheel.moment += wheel.patches[k].moment;
-      wheel.normal_force += wheel.patches[k].normal_force;
+      wheel.force += patch.force;
+      wheel.moment += patch.moment;
+      wheel.normal_force += patch.normal_force;
+      if (wheel.status.ok() && !patch.ok()) {
+        wheel.status = {StepStatus::Code::patch_failed, side, static_cast<int>(k), patch.solution.status,
+                        std::string(to_string(side)) + " wheel, patch " + std::to_string(k) + " of " +
+                            std::to_string(count) + ": " + to_string(patch.solution.status) +
+                            (patch.solution.message.empty() ? "" : ": " + patch.solution.message)};
+      }
     }
     keep_spare_workspaces(previous);
     std::swap(previous, next);
@@ -345,14 +421,14 @@ class WheelsetContact {
 
   /// For each new region, the previous patches whose reference point lies within the
   /// separation distance of its own; sets each patch's history and the wheel's vanished count.
-  const std::vector<std::vector<std::size_t>>& match(const std::vector<ContactRegion>& regions,
+  const std::vector<std::vector<std::size_t>>& match(const std::vector<ContactRegion>& regions, std::size_t count,
                                                      const std::vector<State>& previous, WheelContact& wheel) {
     auto& predecessors = predecessors_;
-    predecessors.resize(regions.size());
-    for (auto& list : predecessors) list.clear();
+    if (predecessors.size() < count) predecessors.resize(count);  // never shrunk: the lists keep their storage
+    for (std::size_t k = 0; k < count; ++k) predecessors[k].clear();
     auto& successors = successor_counts_;
     successors.assign(previous.size(), 0);
-    for (std::size_t k = 0; k < regions.size(); ++k) {
+    for (std::size_t k = 0; k < count; ++k) {
       for (std::size_t p = 0; p < previous.size(); ++p) {
         if ((regions[k].centre - previous[p].centre).norm() <= options_.search.separation_distance) {
           predecessors[k].push_back(p);
@@ -360,8 +436,8 @@ class WheelsetContact {
         }
       }
     }
-    wheel.patches.resize(regions.size());
-    for (std::size_t k = 0; k < regions.size(); ++k) {
+    detail::resize_keeping_storage(wheel.patches, spare_patches_, count);
+    for (std::size_t k = 0; k < count; ++k) {
       const auto& from = predecessors[k];
       wheel.patches[k].history = from.empty()                 ? PatchHistory::appeared
                                  : from.size() > 1             ? PatchHistory::merged
@@ -504,7 +580,7 @@ class WheelsetContact {
       const auto& known = solvers_[s].solver.grid();
       if (known.mx() == grid.mx() && known.my() == grid.my()) return s;
     }
-    solvers_.push_back({Solver(options_.solver, grid, options_.material), {}});
+    solvers_.push_back({SolverFromSpec<Solver>::make(options_.solver, grid, options_.material), {}});
     return solvers_.size() - 1;
   }
 
@@ -533,8 +609,8 @@ class WheelsetContact {
   /// trajectory benchmark (docs/performance.md §8).
   static constexpr Eigen::Index box_quantum = 8;
 
-  const Track& track_;
-  const Wheelset& wheelset_;
+  Track track_;
+  Wheelset wheelset_;
   WheelsetContactOptions options_;
   double dx_ = 0, ds_ = 0;
   /// A solver and the workspaces with its storage that no patch holds at the moment.
@@ -545,9 +621,11 @@ class WheelsetContact {
   std::vector<SolverSlot> solvers_;         // one per grid size met (dx, ds fixed)
   std::array<std::vector<State>, 2> states_;  // per wheel (left, right), per patch
   std::array<std::vector<State>, 2> next_states_;  // the same, being filled by a call
-  std::vector<std::vector<std::size_t>> predecessors_;  // of each new patch (match)
+  std::vector<State> spare_states_;                    // states beyond the patch count, storage kept
+  std::vector<PatchContact> spare_patches_;            // result patches beyond the patch count, storage kept
+  std::vector<std::vector<std::size_t>> predecessors_;  // of each new patch (match); the first `count` in use
   std::vector<int> successor_counts_;                  // of each previous patch (match)
-  std::vector<ContactRegion> regions_;                 // of the wheel being evaluated
+  std::vector<ContactRegion> regions_;                 // of the wheel being evaluated, and spares
   std::array<GapSampler, 2> samplers_;                 // per wheel: the contact search, continued
   std::vector<Eigen::Index> shifted_set_;              // a predecessor's set on the new grid (start_from)
   WheelsetContactResult result_;

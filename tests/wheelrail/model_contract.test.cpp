@@ -1,0 +1,172 @@
+// The wheel–rail model as a library type (issue 31): a real solver parameter (every solver
+// type instantiates the model and the equilibrium, and gives AnySolver's answer bit for
+// bit), ownership that cannot dangle (the model owns its track and wheelset; the contact
+// search knows a track by its id, not its address), and a step status that names the
+// wheel and patch that failed.
+#include <catch2/catch.hpp>
+#include <fastnorm/fastnorm.hpp>
+
+#include <optional>
+#include <string>
+#include <utility>
+
+namespace wr = fastnorm::wheelrail;
+using Catch::Matchers::Contains;
+
+namespace {
+
+wr::WheelsetContactOptions coarse(const char* solver) {
+  wr::WheelsetContactOptions options;
+  options.solver = fastnorm::SolverSpec<double>::parse(solver);
+  options.grid.elements = 20;
+  return options;
+}
+
+// Both wheels at y = 4 mm pressed 0.1 mm into their rails: a tread and a flange-root patch.
+wr::WheelsetPose pressed_pose() {
+  auto pose = wr::rigid_contact_pose(wr::Track(), wr::Wheelset(), 4e-3, 2e-3);
+  pose.z += 0.1e-3;
+  return pose;
+}
+
+void check_same_patches(const wr::WheelsetContactResult& named, const wr::WheelsetContactResult& any) {
+  for (std::size_t w = 0; w < 2; ++w) {
+    REQUIRE(named.wheels[w].patches.size() == any.wheels[w].patches.size());
+    for (std::size_t k = 0; k < named.wheels[w].patches.size(); ++k) {
+      const auto& a = named.wheels[w].patches[k];
+      const auto& b = any.wheels[w].patches[k];
+      CHECK(a.solution.status == b.solution.status);
+      CHECK(a.solution.pressure == b.solution.pressure);  // bit for bit: the same code runs
+      CHECK(a.normal_force == b.normal_force);
+      CHECK(a.stiffness == b.stiffness);
+    }
+  }
+  CHECK(named.force == any.force);
+}
+
+// A model and an equilibrium of solver type `Solver` against AnySolver of the same spec.
+template <typename Solver>
+void check_solver_type(const char* name) {
+  INFO(name);
+  const wr::Track track;
+  const wr::Wheelset wheelset;
+  const auto options = coarse(name);
+  wr::WheelsetContact<Solver> named(track, wheelset, options);
+  wr::WheelsetContact<> any(track, wheelset, options);
+  const auto pose = pressed_pose();
+  const auto& named_result = named.evaluate(pose);
+  const auto& any_result = any.evaluate(pose);
+  REQUIRE(named_result.ok());
+  REQUIRE(named_result.wheel(wr::Side::right).patches.size() >= 1);
+  check_same_patches(named_result, any_result);
+
+  wr::EquilibriumOptions equilibrium_options;
+  equilibrium_options.contact = options;
+  const auto named_equilibrium = wr::solve_equilibrium<Solver>(track, wheelset, 3e-3, 0, 2e5, equilibrium_options);
+  const auto any_equilibrium = wr::solve_equilibrium(track, wheelset, 3e-3, 0, 2e5, equilibrium_options);
+  REQUIRE(named_equilibrium.ok());
+  CHECK(named_equilibrium.pose.z == any_equilibrium.pose.z);
+  CHECK(named_equilibrium.pose.roll == any_equilibrium.pose.roll);
+  CHECK(named_equilibrium.iterations == any_equilibrium.iterations);
+}
+
+}  // namespace
+
+TEST_CASE("Every solver type instantiates the model and the equilibrium, with AnySolver's answers",
+          "[wheelrail][model]") {
+  check_solver_type<fastnorm::NormSolver<>>("norm");
+  check_solver_type<fastnorm::CgSolver<>>("cg");
+  check_solver_type<fastnorm::ReducedSolver<fastnorm::EllipticBasis>>("elliptic");
+  check_solver_type<fastnorm::ReducedSolver<fastnorm::PolynomialBasis>>("polynomial:3");
+  check_solver_type<fastnorm::ReducedSolver<fastnorm::EllipticEdgeBasis>>("elliptic-edge:1");
+  check_solver_type<fastnorm::ReducedSolver<fastnorm::PolynomialEdgeBasis>>("polynomial-edge:4:2");
+}
+
+TEST_CASE("A solver spec of another kind than the model's solver type is refused by name", "[wheelrail][model]") {
+  const wr::Track track;
+  const wr::Wheelset wheelset;
+  using Norm = fastnorm::NormSolver<>;
+  using Elliptic = fastnorm::ReducedSolver<fastnorm::EllipticBasis>;
+  CHECK_THROWS_WITH(wr::WheelsetContact<Norm>(track, wheelset, coarse("cg")),
+                    Contains("WheelsetContactOptions: solver is 'cg'"));
+  CHECK_THROWS_WITH(wr::WheelsetContact<Elliptic>(track, wheelset, coarse("polynomial")),
+                    Contains("WheelsetContactOptions: solver is 'polynomial:4'"));
+  wr::EquilibriumOptions options;
+  options.contact = coarse("elliptic");
+  CHECK_THROWS_WITH(wr::solve_equilibrium<Norm>(track, wheelset, 0, 0, 2e5, options),
+                    Contains("EquilibriumOptions: contact.solver is 'elliptic'"));
+  CHECK_THROWS_WITH(fastnorm::make_solver<Norm>(fastnorm::SolverSpec<>::parse("cg"),
+                                                fastnorm::Grid<>(4, 4, 1e-3, 1e-3), fastnorm::Material<>::steel()),
+                    Contains("solver spec is 'cg'"));
+}
+
+TEST_CASE("The model owns its track and wheelset: built from temporaries, moved, it evaluates alike",
+          "[wheelrail][model]") {
+  const auto pose = pressed_pose();
+  // Temporaries: with references kept, this evaluate would read freed objects (ASan in CI).
+  wr::WheelsetContact<fastnorm::NormSolver<>> from_temporaries{wr::Track(), wr::Wheelset(), coarse("norm")};
+  const wr::Track track;
+  const wr::Wheelset wheelset;
+  wr::WheelsetContact<fastnorm::NormSolver<>> reference(track, wheelset, coarse("norm"));
+  const auto expected = reference.evaluate(pose);
+  check_same_patches(from_temporaries.evaluate(pose), expected);
+  // A moved model goes on from where it was: its search continues, its answers are the same.
+  auto moved = std::move(from_temporaries);
+  check_same_patches(moved.evaluate(pose), reference.evaluate(pose));
+}
+
+TEST_CASE("The contact search knows a track by its id, not by its address", "[wheelrail][model]") {
+  const wr::Wheelset wheelset;
+  const wr::SearchOptions search;
+  const wr::Track standard;
+  wr::TrackLayout wide;
+  wide.gauge = 1.445;
+  const wr::Track other(wr::uic60_rail(), wide);
+  CHECK(standard.id() != other.id());
+  CHECK(wr::Track(standard).id() == standard.id());  // a copy is the same track
+  // One storage, two tracks in turn: the same address, different ids.
+  std::optional<wr::Track> storage;
+  storage.emplace(standard);
+  const wr::Track* first = &*storage;
+  auto pose = wr::rigid_contact_pose(standard, wheelset, 2e-3, 0, search);
+  pose.z += 0.1e-3;
+  wr::GapSampler continued;
+  std::vector<wr::ContactRegion> regions;
+  wr::contact_regions(*storage, wheelset, wr::Side::right, pose, search, continued, regions);
+  storage.emplace(other);
+  REQUIRE(&*storage == first);
+  const std::size_t count = wr::contact_regions(*storage, wheelset, wr::Side::right, pose, search, continued, regions);
+  const auto fresh = wr::contact_regions(other, wheelset, wr::Side::right, pose, search);
+  REQUIRE(count == fresh.size());
+  for (std::size_t k = 0; k < count; ++k) {
+    CHECK(regions[k].centre == fresh[k].centre);
+    CHECK(regions[k].slices.size() == fresh[k].slices.size());
+  }
+}
+
+TEST_CASE("The step status names the wheel and patch that failed, and why", "[wheelrail][model]") {
+  CHECK(wr::StepStatus().code == wr::StepStatus::Code::not_solved);
+  CHECK_FALSE(wr::WheelsetContactResult().ok());
+  const auto pose = pressed_pose();
+  wr::WheelsetContact<> good(wr::Track(), wr::Wheelset(), coarse("norm"));
+  const auto& fine = good.evaluate(pose);
+  CHECK(fine.ok());
+  CHECK(fine.status.patch == -1);
+  CHECK(fine.status.message.empty());
+  // One active-set iteration cannot reach NORM's contact set: every patch ends at the
+  // iteration limit, and the first failure is the left wheel's first patch.
+  auto options = coarse("norm");
+  options.solver.active_set.max_iterations = 1;
+  wr::WheelsetContact<fastnorm::NormSolver<>> starved(wr::Track(), wr::Wheelset(), options);
+  const auto& result = starved.evaluate(pose);
+  REQUIRE_FALSE(result.ok());
+  CHECK(result.status.code == wr::StepStatus::Code::patch_failed);
+  CHECK(result.status.side == wr::Side::left);
+  CHECK(result.status.patch == 0);
+  CHECK(result.status.solver_status == fastnorm::Status::iteration_limit);
+  CHECK_THAT(result.status.message, Contains("left wheel, patch 0 of") && Contains("iteration limit"));
+  CHECK(result.wheel(wr::Side::right).status.side == wr::Side::right);
+  CHECK_FALSE(result.wheel(wr::Side::right).ok());
+  // The single-wheel mode reports its wheel's status.
+  CHECK(starved.evaluate(pose, wr::Side::right).status.side == wr::Side::right);
+}
