@@ -146,6 +146,13 @@ static void wheelset_equilibrium_and_time_step(void) {
   options.elements = 30;
   fastnorm_wheelset* model = NULL;
   REQUIRE_OK(fastnorm_wheelset_create(&options, &model));
+  /* Zeroed structs, and the model before any evaluate, read "not solved". */
+  fastnorm_equilibrium zeroed;
+  memset(&zeroed, 0, sizeof zeroed);
+  EXPECT(zeroed.status == FASTNORM_EQUILIBRIUM_NOT_SOLVED);
+  fastnorm_step_status step;
+  REQUIRE_OK(fastnorm_wheelset_step_status(model, &step));
+  EXPECT(step.code == FASTNORM_STEP_NOT_SOLVED);
   const double load = 2e5;
   fastnorm_equilibrium found;
   REQUIRE_OK(fastnorm_wheelset_equilibrium(model, load, 3e-3, 0.0, &found));
@@ -174,14 +181,47 @@ static void wheelset_equilibrium_and_time_step(void) {
       EXPECT(fabs(sum * patch.grid.dx * patch.grid.dy / patch.normal_force - 1) < 1e-9);
       EXPECT(patch.stiffness > 0);
       EXPECT(patch.flange_climb == 0);
+      EXPECT(patch.status == FASTNORM_CONVERGED);
+      /* The pressures placed in the track frame (reference + x e_x + s t_s): their centroid
+       * is the library's pressure centre, and the force on the wheel is -Fn n. */
+      double placed[3] = {0, 0, 0};
+      for (int j = 0; j < patch.grid.my; ++j) {
+        for (int i = 0; i < patch.grid.mx; ++i) {
+          const double p = pressure[i + patch.grid.mx * j];
+          const double x = patch.grid.x0 + i * patch.grid.dx, s = patch.grid.y0 + j * patch.grid.dy;
+          for (int c = 0; c < 3; ++c) placed[c] += p * (patch.reference[c] + x * patch.e_x[c] + s * patch.t_s[c]);
+        }
+      }
+      for (int c = 0; c < 3; ++c) {
+        EXPECT(fabs(placed[c] / sum - patch.pressure_centre[c]) < 1e-12);
+        EXPECT(fabs(patch.force[c] + patch.normal_force * patch.normal[c]) <= 1e-9 * patch.normal_force);
+      }
       vertical += patch.force[2];
       free(pressure);
     }
   }
   printf("time step at that pose: vertical force on the wheelset %.6g N\n", force[2]);
   EXPECT(fabs(vertical - force[2]) <= 1e-9 * fabs(force[2]));
+  REQUIRE_OK(fastnorm_wheelset_step_status(model, &step));
+  EXPECT(step.code == FASTNORM_STEP_OK && step.wheel == -1 && step.patch == -1);
   fastnorm_patch unused;
   expect_error(fastnorm_wheelset_patch(model, 2, 0, &unused), "wheel");
+  fastnorm_wheelset_destroy(model);
+
+  /* A failed patch solve is a status: one active-set iteration cannot reach NORM's set. */
+  options.solver = "norm";
+  options.max_iterations = 1;
+  REQUIRE_OK(fastnorm_wheelset_create(&options, &model));
+  const int code = fastnorm_wheelset_evaluate(model, &found.pose, force, moment);
+  printf("a starved solve: %s\n", fastnorm_last_error());
+  EXPECT(code == FASTNORM_ERROR_PATCH_FAILED);
+  EXPECT(strstr(fastnorm_last_error(), "left wheel, patch 0") != NULL);
+  EXPECT(strstr(fastnorm_last_error(), "iteration limit") != NULL);
+  REQUIRE_OK(fastnorm_wheelset_step_status(model, &step));
+  EXPECT(step.code == FASTNORM_STEP_PATCH_FAILED && step.wheel == 0 && step.patch == 0 &&
+         step.solver_status == FASTNORM_ITERATION_LIMIT);
+  REQUIRE_OK(fastnorm_wheelset_patch(model, 0, 0, &unused));
+  EXPECT(unused.status == FASTNORM_ITERATION_LIMIT);
   fastnorm_wheelset_destroy(model);
 }
 

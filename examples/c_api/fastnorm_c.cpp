@@ -8,13 +8,12 @@
 #include <fastnorm/version.hpp>
 #include <fastnorm/wheelrail.hpp>
 
-#include "support/wheelset_setup.hpp"
-
 #include <array>
 #include <cmath>
 #include <limits>
 #include <new>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -30,17 +29,8 @@ struct fastnorm_case {
 };
 
 struct fastnorm_wheelset {
-  // The model refers to track and wheelset: built here, never copied or moved.
-  fastnorm_wheelset(wr::Track track_value, wr::Wheelset wheelset_value, wr::WheelsetContactOptions contact)
-      : track(std::move(track_value)), wheelset(std::move(wheelset_value)), options(std::move(contact)),
-        model(track, wheelset, options) {}
-  fastnorm_wheelset(const fastnorm_wheelset&) = delete;
-  fastnorm_wheelset& operator=(const fastnorm_wheelset&) = delete;
-
-  wr::Track track;
-  wr::Wheelset wheelset;
-  wr::WheelsetContactOptions options;
-  wr::WheelsetContact<> model;
+  wr::WheelsetContact<> model;  // owns its track and wheelset
+  wr::StepStatus step;          // of the last evaluate; not_solved after an equilibrium
   std::optional<wr::Equilibrium> equilibrium;  // the last equilibrium, when it was the last call
   std::array<std::vector<const wr::PatchContact*>, 2> patches;  // what fastnorm_wheelset_patch reads
 };
@@ -48,6 +38,12 @@ struct fastnorm_wheelset {
 namespace {
 
 thread_local std::string last_error;
+
+// A step whose patch solve gave no usable answer: a status that evaluate reports with its
+// message (FASTNORM_ERROR_PATCH_FAILED), its results still written.
+struct patch_failed : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
 
 // Runs `body`, turning exceptions into a code and this thread's message.
 template <typename Body>
@@ -58,6 +54,9 @@ int guarded(const char* function, Body&& body) {
   } catch (const fastnorm::invalid_argument& error) {
     last_error = std::string(function) + ": " + error.what();
     return FASTNORM_ERROR_ARGUMENT;
+  } catch (const patch_failed& failure) {
+    last_error = std::string(function) + ": " + failure.what();
+    return FASTNORM_ERROR_PATCH_FAILED;
   } catch (const std::bad_alloc&) {
     last_error = std::string(function) + ": out of memory";
     return FASTNORM_ERROR_MEMORY;
@@ -118,16 +117,16 @@ fastnorm::Solution<double> solve_into(fastnorm_solver* solver, const double* h, 
 // solve_next's loading: Fn > 0 force control, Fn <= 0 approach control, NaN or inf refused.
 fastnorm::Loading<double> loading_of(double normal_force) {
   FASTNORM_CHECK(std::isfinite(normal_force),
-                 fastnorm::detail::describe("normal_force must be finite (N; <= 0 for approach control)", normal_force));
+                 fastnorm::describe("normal_force must be finite (N; <= 0 for approach control)", normal_force));
   return normal_force > 0 ? fastnorm::Loading<double>::force(normal_force) : fastnorm::Loading<double>::approach();
 }
 
 const wr::PatchContact& patch_of(const fastnorm_wheelset* model, int wheel, int patch) {
   require_pointer(model, "model");
-  FASTNORM_CHECK(wheel == 0 || wheel == 1, fastnorm::detail::describe("wheel must be 0 (left) or 1 (right)", wheel));
+  FASTNORM_CHECK(wheel == 0 || wheel == 1, fastnorm::describe("wheel must be 0 (left) or 1 (right)", wheel));
   const auto& patches = model->patches[static_cast<std::size_t>(wheel)];
   FASTNORM_CHECK(patch >= 0 && static_cast<std::size_t>(patch) < patches.size(),
-                 fastnorm::detail::describe("patch must lie in [0, patch count)", patch));
+                 fastnorm::describe("patch must lie in [0, patch count)", patch));
   return *patches[static_cast<std::size_t>(patch)];
 }
 
@@ -142,11 +141,19 @@ static_assert(static_cast<int>(fastnorm::Status::not_solved) == FASTNORM_NOT_SOL
               static_cast<int>(fastnorm::Status::iteration_limit) == FASTNORM_ITERATION_LIMIT &&
               static_cast<int>(fastnorm::Status::cycled) == FASTNORM_CYCLED &&
               static_cast<int>(fastnorm::Status::numerical_issue) == FASTNORM_NUMERICAL_ISSUE);
-static_assert(static_cast<int>(wr::EquilibriumStatus::converged) == FASTNORM_EQUILIBRIUM_CONVERGED &&
+static_assert(static_cast<int>(wr::EquilibriumStatus::not_solved) == FASTNORM_EQUILIBRIUM_NOT_SOLVED &&
+              static_cast<int>(wr::EquilibriumStatus::converged) == FASTNORM_EQUILIBRIUM_CONVERGED &&
               static_cast<int>(wr::EquilibriumStatus::lost_contact) == FASTNORM_EQUILIBRIUM_LOST_CONTACT &&
               static_cast<int>(wr::EquilibriumStatus::not_converged) == FASTNORM_EQUILIBRIUM_NOT_CONVERGED &&
               static_cast<int>(wr::EquilibriumStatus::solver_failed) == FASTNORM_EQUILIBRIUM_SOLVER_FAILED &&
               static_cast<int>(wr::EquilibriumStatus::flange_climb) == FASTNORM_EQUILIBRIUM_FLANGE_CLIMB);
+static_assert(static_cast<int>(wr::StepStatus::Code::not_solved) == FASTNORM_STEP_NOT_SOLVED &&
+              static_cast<int>(wr::StepStatus::Code::ok) == FASTNORM_STEP_OK &&
+              static_cast<int>(wr::StepStatus::Code::patch_failed) == FASTNORM_STEP_PATCH_FAILED);
+static_assert(static_cast<int>(wr::PatchHistory::continued) == FASTNORM_PATCH_CONTINUED &&
+              static_cast<int>(wr::PatchHistory::appeared) == FASTNORM_PATCH_APPEARED &&
+              static_cast<int>(wr::PatchHistory::merged) == FASTNORM_PATCH_MERGED &&
+              static_cast<int>(wr::PatchHistory::split) == FASTNORM_PATCH_SPLIT);
 
 }  // namespace
 
@@ -174,9 +181,9 @@ int fastnorm_solver_create(const char* name, const fastnorm_grid* grid, const fa
     auto spec = fastnorm::SolverSpec<double>::parse(name);
     if (options) {
       FASTNORM_CHECK(options->max_iterations >= 0,
-                     fastnorm::detail::describe("options.max_iterations must be >= 0", options->max_iterations));
+                     fastnorm::describe("options.max_iterations must be >= 0", options->max_iterations));
       FASTNORM_CHECK(std::isfinite(options->tolerance) && options->tolerance >= 0,
-                     fastnorm::detail::describe("options.tolerance must be >= 0", options->tolerance));
+                     fastnorm::describe("options.tolerance must be >= 0", options->tolerance));
       if (options->max_iterations > 0) spec.active_set.max_iterations = spec.cg.max_iterations = options->max_iterations;
       if (options->tolerance > 0) spec.cg.tolerance = options->tolerance;
     }
@@ -320,9 +327,7 @@ int fastnorm_wheelset_create(const fastnorm_wheelset_options* options, fastnorm_
     require_pointer(model, "model");
     *model = nullptr;
     require_pointer(options->solver, "options.solver");
-    fastnorm::detail::check_positive(options->nominal_radius, "options.nominal_radius (m)");
-    fastnorm::detail::check_positive(options->gauge, "options.gauge (m)");
-    fastnorm_example::WheelsetSetup setup;
+    wr::WheelsetOnTrack setup;
     setup.wheel_profile = options->wheel_profile ? options->wheel_profile : "";
     setup.rail_profile = options->rail_profile ? options->rail_profile : "";
     setup.nominal_radius = options->nominal_radius;
@@ -333,7 +338,14 @@ int fastnorm_wheelset_create(const fastnorm_wheelset_options* options, fastnorm_
     contact.material = material_of(&options->material);
     contact.grid.elements = options->elements;
     contact.stiffness = options->stiffness != 0;
-    *model = new fastnorm_wheelset(fastnorm_example::track_of(setup), fastnorm_example::wheelset_of(setup), contact);
+    FASTNORM_CHECK(options->max_iterations >= 0,
+                   fastnorm::describe("options.max_iterations must be >= 0", options->max_iterations));
+    if (options->max_iterations > 0) {
+      contact.solver.active_set.max_iterations = options->max_iterations;
+      contact.solver.cg.max_iterations = options->max_iterations;
+    }
+    wr::Track track = setup.track();  // first: a bad gauge is named as the gauge
+    *model = new fastnorm_wheelset{wr::WheelsetContact<>(std::move(track), setup.wheelset(), contact), {}, {}, {}};
   });
 }
 
@@ -345,12 +357,26 @@ int fastnorm_wheelset_evaluate(fastnorm_wheelset* model, const fastnorm_pose* po
     require_pointer(pose, "pose");
     model->equilibrium.reset();
     for (auto& patches : model->patches) patches.clear();
+    model->step = {};
     const auto& result = model->model.evaluate({pose->y, pose->z, pose->roll, pose->yaw});
     for (std::size_t wheel = 0; wheel < 2; ++wheel) {
       for (const auto& patch : result.wheels[wheel].patches) model->patches[wheel].push_back(&patch);
     }
     if (force) copy3(result.force, force);
     if (moment) copy3(result.moment, moment);
+    model->step = result.status;
+    if (!result.ok()) throw patch_failed(result.status.message);
+  });
+}
+
+int fastnorm_wheelset_step_status(const fastnorm_wheelset* model, fastnorm_step_status* status) {
+  return guarded("fastnorm_wheelset_step_status", [&] {
+    require_pointer(model, "model");
+    require_pointer(status, "status");
+    const wr::StepStatus& step = model->step;
+    const bool failed = step.code == wr::StepStatus::Code::patch_failed;
+    *status = {static_cast<int>(step.code), failed ? (step.side == wr::Side::right ? 1 : 0) : -1, step.patch,
+               static_cast<int>(step.solver_status)};
   });
 }
 
@@ -358,7 +384,7 @@ int fastnorm_wheelset_patch_count(const fastnorm_wheelset* model, int wheel, int
   return guarded("fastnorm_wheelset_patch_count", [&] {
     require_pointer(model, "model");
     require_pointer(count, "count");
-    FASTNORM_CHECK(wheel == 0 || wheel == 1, fastnorm::detail::describe("wheel must be 0 (left) or 1 (right)", wheel));
+    FASTNORM_CHECK(wheel == 0 || wheel == 1, fastnorm::describe("wheel must be 0 (left) or 1 (right)", wheel));
     *count = static_cast<int>(model->patches[static_cast<std::size_t>(wheel)].size());
   });
 }
@@ -368,18 +394,27 @@ int fastnorm_wheelset_patch(const fastnorm_wheelset* model, int wheel, int patch
     require_pointer(out, "out");
     const auto& contact = patch_of(model, wheel, patch);
     fastnorm_patch value{};
+    const wr::PatchFrame& frame = contact.patch.frame;
     value.status = static_cast<int>(contact.solution.status);
     value.at_edge = contact.solution.at_edge ? 1 : 0;
-    value.flange_climb = model->wheelset.at_flange_climb(contact.profile_y) ? 1 : 0;
+    value.flange_climb = model->model.wheelset().at_flange_climb(contact.profile_y) ? 1 : 0;
+    value.history = static_cast<int>(contact.history);
+    value.contact_elements = static_cast<int>(contact.contact_elements);
     value.grid = grid_to_c(contact.patch.grid);
+    copy3(frame.reference, value.reference);
+    copy3(Eigen::Vector3d::UnitX(), value.e_x);
+    copy3(frame.lateral_axis(), value.t_s);
+    copy3(frame.normal(), value.normal);
+    copy3(contact.centre, value.centre);
+    copy3(contact.pressure_centre, value.pressure_centre);
+    value.profile_y = contact.profile_y;
     value.normal_force = contact.normal_force;
     copy3(contact.force, value.force);
     copy3(contact.moment, value.moment);
-    copy3(contact.centre, value.centre);
     value.contact_angle = contact.contact_angle;
     value.approach = contact.approach;
+    value.max_pressure = contact.max_pressure;
     value.stiffness = contact.stiffness;
-    value.profile_y = contact.profile_y;
     *out = value;
   });
 }
@@ -398,12 +433,14 @@ int fastnorm_wheelset_equilibrium(fastnorm_wheelset* model, double load, double 
     require_pointer(model, "model");
     require_pointer(result, "result");
     model->equilibrium.reset();
+    model->step = {};
     for (auto& patches : model->patches) patches.clear();
     wr::EquilibriumOptions options;
-    options.contact = model->options;
-    model->equilibrium = wr::solve_equilibrium(model->track, model->wheelset, y, yaw, load, options);
+    options.contact = model->model.options();
+    model->equilibrium =
+        wr::solve_equilibrium(model->model.track(), model->model.wheelset(), y, yaw, load, options);
     const auto& found = *model->equilibrium;
-    for (const auto& patch : found.patches) model->patches[fastnorm_example::wheel_index_of(patch)].push_back(&patch);
+    for (const auto& patch : found.patches) model->patches[patch.patch.frame.side == wr::Side::right ? 1 : 0].push_back(&patch);
     fastnorm_equilibrium value{};
     value.status = static_cast<int>(found.status);
     value.iterations = found.iterations;

@@ -26,7 +26,11 @@ enum {
   FASTNORM_OK = 0,
   FASTNORM_ERROR_ARGUMENT = 1, /* bad input: the message names the argument */
   FASTNORM_ERROR_MEMORY = 2,   /* out of memory */
-  FASTNORM_ERROR_INTERNAL = 3  /* anything else: a bug, please report the message */
+  FASTNORM_ERROR_INTERNAL = 3, /* anything else: a bug, please report the message */
+  /* fastnorm_wheelset_evaluate: a patch solve gave no usable answer. The message names the
+   * wheel, the patch and why (fastnorm_wheelset_step_status has it as numbers); forces and
+   * patches are written as for FASTNORM_OK, the failed patch's with its own status. */
+  FASTNORM_ERROR_PATCH_FAILED = 4
 };
 
 /* How a solve ended (fastnorm::Status). */
@@ -131,6 +135,7 @@ typedef struct fastnorm_wheelset_options {
   fastnorm_material material; /* wheel (body 1) and rail (body 2) */
   int elements;               /* elements across the largest patch, in [4, 2000] */
   int stiffness;              /* 1: each patch's dFn/d(approach) as well; 0: not */
+  int max_iterations;         /* of each patch solve, as in fastnorm_solver_options; 0: the default */
 } fastnorm_wheelset_options;
 
 /* Fills the defaults: "norm", S1002 on UIC60, radius 0.45 m, gauge 1.435 m, cant 1/40,
@@ -143,21 +148,51 @@ typedef struct fastnorm_pose {
   double y, z, roll, yaw;
 } fastnorm_pose;
 
-/* One contact patch. Track frame: x forward, y right, z down. */
+/* How a patch relates to the patches of its wheel at the previous evaluate. */
+enum {
+  FASTNORM_PATCH_CONTINUED = 0, /* the continuation of one previous patch */
+  FASTNORM_PATCH_APPEARED = 1,  /* no previous patch near it */
+  FASTNORM_PATCH_MERGED = 2,    /* two or more previous patches became this one */
+  FASTNORM_PATCH_SPLIT = 3      /* one previous patch became this and another */
+};
+
+/* One contact patch (fastnorm::wheelrail::PatchContact). Track frame: x forward, y right,
+ * z down. Element k of the grid, at (x_k, s_k) = (x0 + i dx, y0 + j dy), lies at the track
+ * point reference + x_k e_x + s_k t_s: the pressures placed in the track frame. A zeroed
+ * struct reads status FASTNORM_NOT_SOLVED. */
 typedef struct fastnorm_patch {
   int status;               /* of its solve, FASTNORM_CONVERGED, ... */
   int at_edge;              /* contact touches its grid's boundary */
   int flange_climb;         /* the reference point lies on the flange's steepest flank or beyond */
-  fastnorm_grid grid;       /* the patch's grid in its tangent plane */
+  int history;              /* FASTNORM_PATCH_CONTINUED, ... */
+  int contact_elements;     /* elements in contact */
+  fastnorm_grid grid;       /* the patch's grid in its tangent plane, relative to reference */
+  double reference[3];      /* the grid's origin P, on the rail (m) */
+  double e_x[3];            /* the grid's x axis: rolling direction (1, 0, 0) */
+  double t_s[3];            /* the grid's y axis: lateral, in the tangent plane */
+  double normal[3];         /* n, the normal into the rail */
+  double centre[3];         /* the contact reference point: interpenetration-weighted centre (m) */
+  double pressure_centre[3];/* the centroid of the pressure in the tangent plane (m) */
+  double profile_y;         /* wheel profile coordinate y_w of the reference point (m) */
   double normal_force;      /* Fn (N) */
-  double force[3];          /* Fn along the inward normal, track frame (N) */
-  double moment[3];         /* about the wheelset centre (N m) */
-  double centre[3];         /* contact reference point (m) */
+  double force[3];          /* the normal force on the wheel, -Fn n, track frame (N) */
+  double moment[3];         /* its moment about the wheelset centre (N m) */
   double contact_angle;     /* of the normal from the vertical, + towards the track centre (rad) */
-  double approach;          /* rigid interpenetration (m) */
+  double approach;          /* rigid interpenetration, -min h (m) */
+  double max_pressure;      /* Pa */
   double stiffness;         /* dFn/d(approach) (N/m); NaN when not asked for */
-  double profile_y;         /* wheel profile coordinate of the reference point (m) */
 } fastnorm_patch;
+
+/* How the last fastnorm_wheelset_evaluate ended (fastnorm::wheelrail::StepStatus). A zeroed
+ * struct, and the model before its first evaluate or after an equilibrium, read
+ * FASTNORM_STEP_NOT_SOLVED. */
+enum { FASTNORM_STEP_NOT_SOLVED = 0, FASTNORM_STEP_OK = 1, FASTNORM_STEP_PATCH_FAILED = 2 };
+typedef struct fastnorm_step_status {
+  int code;          /* FASTNORM_STEP_* */
+  int wheel;         /* of the first failed patch: 0 left, 1 right; -1 if none failed */
+  int patch;         /* its index in that wheel's patches; -1 if none failed */
+  int solver_status; /* its solve's FASTNORM_ITERATION_LIMIT, ...; FASTNORM_NOT_SOLVED if none failed */
+} fastnorm_step_status;
 
 typedef struct fastnorm_wheelset fastnorm_wheelset;
 
@@ -165,9 +200,10 @@ FASTNORM_C_API int fastnorm_wheelset_create(const fastnorm_wheelset_options* opt
 FASTNORM_C_API void fastnorm_wheelset_destroy(fastnorm_wheelset* model);
 /* Evaluates every wheel's contact at pose; force[3] and moment[3] (may be NULL) receive the
  * totals on the wheelset (N, N m about its centre). The patches stay readable until the
- * next evaluate. */
+ * next evaluate. FASTNORM_ERROR_PATCH_FAILED when a patch solve gave no usable answer. */
 FASTNORM_C_API int fastnorm_wheelset_evaluate(fastnorm_wheelset* model, const fastnorm_pose* pose, double* force,
                                               double* moment);
+FASTNORM_C_API int fastnorm_wheelset_step_status(const fastnorm_wheelset* model, fastnorm_step_status* status);
 FASTNORM_C_API int fastnorm_wheelset_patch_count(const fastnorm_wheelset* model, int wheel, int* count);
 FASTNORM_C_API int fastnorm_wheelset_patch(const fastnorm_wheelset* model, int wheel, int patch, fastnorm_patch* out);
 /* The patch's pressures (Pa), grid.mx*grid.my values, written. */
@@ -186,11 +222,12 @@ typedef struct fastnorm_equilibrium {
 } fastnorm_equilibrium;
 
 enum {
-  FASTNORM_EQUILIBRIUM_CONVERGED = 0,
-  FASTNORM_EQUILIBRIUM_LOST_CONTACT = 1,
-  FASTNORM_EQUILIBRIUM_NOT_CONVERGED = 2,
-  FASTNORM_EQUILIBRIUM_SOLVER_FAILED = 3,
-  FASTNORM_EQUILIBRIUM_FLANGE_CLIMB = 4
+  FASTNORM_EQUILIBRIUM_NOT_SOLVED = 0, /* a zeroed struct */
+  FASTNORM_EQUILIBRIUM_CONVERGED = 1,
+  FASTNORM_EQUILIBRIUM_LOST_CONTACT = 2,
+  FASTNORM_EQUILIBRIUM_NOT_CONVERGED = 3,
+  FASTNORM_EQUILIBRIUM_SOLVER_FAILED = 4,
+  FASTNORM_EQUILIBRIUM_FLANGE_CLIMB = 5
 };
 
 /* The equilibrium; the model then holds its patches (fastnorm_wheelset_patch reads them). */

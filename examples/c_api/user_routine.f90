@@ -7,7 +7,7 @@ module fastnorm_c
   use iso_c_binding
   implicit none
 
-  integer(c_int), parameter :: fastnorm_ok = 0, fastnorm_equilibrium_converged = 0
+  integer(c_int), parameter :: fastnorm_ok = 0, fastnorm_equilibrium_converged = 1
 
   type, bind(c) :: fastnorm_material
     real(c_double) :: young_modulus_1, poisson_ratio_1, young_modulus_2, poisson_ratio_2
@@ -21,7 +21,7 @@ module fastnorm_c
     type(c_ptr) :: solver, wheel_profile, rail_profile
     real(c_double) :: nominal_radius, gauge, cant
     type(fastnorm_material) :: material
-    integer(c_int) :: elements, stiffness
+    integer(c_int) :: elements, stiffness, max_iterations
   end type
 
   type, bind(c) :: fastnorm_equilibrium

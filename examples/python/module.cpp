@@ -13,7 +13,6 @@
 #include <fastnorm/version.hpp>
 #include <fastnorm/wheelrail.hpp>
 
-#include "support/wheelset_setup.hpp"
 
 #include <algorithm>
 #include <array>
@@ -57,6 +56,14 @@ py::array_t<double> vector3(const Eigen::Vector3d& value) {
   py::array_t<double> array(3);
   std::copy(value.data(), value.data() + 3, array.mutable_data());
   return array;
+}
+
+// A number as Python's repr writes it (the shortest text that reads back the same).
+std::string number(double value) { return py::repr(py::float_(value)).cast<std::string>(); }
+
+std::string vector_text(const py::array_t<double>& values) {
+  const double* data = values.data();
+  return "[" + number(data[0]) + ", " + number(data[1]) + ", " + number(data[2]) + "]";
 }
 
 // A solver's answer as Python holds it.
@@ -157,7 +164,7 @@ using Case = fastnorm::Case<double>;
 
 Case make_case(const std::string& name, const Grid& grid, const Material& material,
                const InputArray& undeformed_distance, std::optional<double> normal_force, double stated_approach) {
-  fastnorm::detail::check_one_material(material);  // what write_case can store
+  fastnorm::check_case_material(material);  // what write_case can store
   return Case{name,
               "fastnorm Python module",
               grid,
@@ -186,8 +193,10 @@ struct PyPatch {
   Grid grid{1, 1, 1, 1};
   PySolution solution;
   py::array_t<double> undeformed_distance;  // m, (my, mx), at approach 0
+  py::array_t<double> reference, e_x, t_s, normal;  // the grid's frame
   py::array_t<double> centre, force, moment, pressure_centre;
   double normal_force = 0, contact_angle = 0, approach = 0, stiffness = 0, profile_y = 0, max_pressure = 0;
+  Eigen::Index contact_elements = 0;
   bool flange_climb = false;
   std::string history;
 };
@@ -197,6 +206,11 @@ PyPatch to_python(const wr::PatchContact& contact, const wr::Wheelset& wheelset)
   out.grid = contact.patch.grid;
   out.solution = to_python(contact.patch.grid, contact.solution);
   out.undeformed_distance = map_of<double>(contact.patch.grid, contact.patch.undeformed_distance);
+  out.reference = vector3(contact.patch.frame.reference);
+  out.e_x = vector3(Eigen::Vector3d::UnitX());
+  out.t_s = vector3(contact.patch.frame.lateral_axis());
+  out.normal = vector3(contact.patch.frame.normal());
+  out.contact_elements = contact.contact_elements;
   out.centre = vector3(contact.centre);
   out.force = vector3(contact.force);
   out.moment = vector3(contact.moment);
@@ -218,13 +232,14 @@ struct PyWheel {
   py::array_t<double> force, moment;
   double normal_force = 0;
   bool flange_climb = false;
+  wr::StepStatus status;
 };
 
 struct PyWheelsetResult {
   wr::WheelsetPose pose;
   std::vector<PyWheel> wheels;  // left, right
   py::array_t<double> force, moment;
-  bool ok = false;
+  wr::StepStatus status;
 };
 
 struct PyEquilibrium {
@@ -244,7 +259,7 @@ std::vector<PyWheel> wheels_of(const std::vector<wr::PatchContact>& patches, con
   std::array<Eigen::Vector3d, 2> force{Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};
   std::array<Eigen::Vector3d, 2> moment = force;
   for (const auto& patch : patches) {
-    const std::size_t wheel = fastnorm_example::wheel_index_of(patch);
+    const std::size_t wheel = patch.patch.frame.side == wr::Side::right ? 1 : 0;
     wheels[wheel].patches.push_back(to_python(patch, wheelset));
     wheels[wheel].normal_force += patch.normal_force;
     wheels[wheel].flange_climb = wheels[wheel].flange_climb || wheels[wheel].patches.back().flange_climb;
@@ -261,13 +276,8 @@ std::vector<PyWheel> wheels_of(const std::vector<wr::PatchContact>& patches, con
 // The wheelset contact model of the time loop and the equilibrium on the same set-up.
 class PyWheelset {
  public:
-  PyWheelset(const fastnorm_example::WheelsetSetup& setup, const wr::WheelsetContactOptions& options)
-      : track_(fastnorm_example::track_of(setup)),
-        wheelset_(fastnorm_example::wheelset_of(setup)),
-        options_(options),
-        model_(track_, wheelset_, options_) {}
-  PyWheelset(const PyWheelset&) = delete;  // model_ refers to track_ and wheelset_
-  PyWheelset& operator=(const PyWheelset&) = delete;
+  PyWheelset(wr::Track track, const wr::WheelsetOnTrack& setup, const wr::WheelsetContactOptions& options)
+      : model_(std::move(track), setup.wheelset(), options) {}
 
   PyWheelsetResult evaluate(const wr::WheelsetPose& pose) {
     std::optional<wr::WheelsetContactResult> result;
@@ -281,34 +291,35 @@ class PyWheelset {
     for (const auto& wheel : result->wheels) {
       PyWheel copy;
       copy.side = wr::to_string(wheel.side);
-      for (const auto& patch : wheel.patches) copy.patches.push_back(to_python(patch, wheelset_));
+      for (const auto& patch : wheel.patches) copy.patches.push_back(to_python(patch, model_.wheelset()));
       copy.force = vector3(wheel.force);
       copy.moment = vector3(wheel.moment);
       copy.normal_force = wheel.normal_force;
       copy.flange_climb = wheel.flange_climb;
+      copy.status = wheel.status;
       out.wheels.push_back(std::move(copy));
     }
     out.force = vector3(result->force);
     out.moment = vector3(result->moment);
-    out.ok = result->ok();
+    out.status = result->status;
     return out;
   }
 
   PyEquilibrium equilibrium(double load, double y, double yaw, double force_tolerance, int max_iterations) {
     wr::EquilibriumOptions options;
-    options.contact = options_;
+    options.contact = model_.options();
     options.force_tolerance = force_tolerance;
     options.max_iterations = max_iterations;
     std::optional<wr::Equilibrium> found;
     {
       py::gil_scoped_release released;
-      found = wr::solve_equilibrium(track_, wheelset_, y, yaw, load, options);
+      found = wr::solve_equilibrium(model_.track(), model_.wheelset(), y, yaw, load, options);
     }
     PyEquilibrium out;
     out.status = wr::to_string(found->status);
     out.message = found->message;
     out.pose = found->pose;
-    out.wheels = wheels_of(found->patches, wheelset_);
+    out.wheels = wheels_of(found->patches, model_.wheelset());
     out.vertical_force = found->vertical_force;
     out.lateral_force = found->lateral_force;
     out.vertical_residual = found->vertical_residual;
@@ -318,12 +329,9 @@ class PyWheelset {
     return out;
   }
 
-  double flange_angle() const { return wheelset_.flange_angle(); }
+  double flange_angle() const { return model_.wheelset().flange_angle(); }
 
  private:
-  wr::Track track_;
-  wr::Wheelset wheelset_;
-  wr::WheelsetContactOptions options_;
   wr::WheelsetContact<> model_;
   std::mutex calls_;  // evaluate changes the model's state
 };
@@ -331,22 +339,21 @@ class PyWheelset {
 std::unique_ptr<PyWheelset> make_wheelset(const std::string& solver, Eigen::Index elements,
                                           std::optional<std::string> wheel_profile,
                                           std::optional<std::string> rail_profile, double nominal_radius,
-                                          double gauge, double cant, const Material& material, bool stiffness) {
-  fastnorm::detail::check_positive(nominal_radius, "nominal_radius_m");
-  fastnorm::detail::check_positive(gauge, "gauge_m");
-  FASTNORM_CHECK(std::isfinite(cant), fastnorm::detail::describe("cant_rad must be finite", cant));
-  fastnorm_example::WheelsetSetup setup;
+                                          double gauge, double cant, const Material& material, bool stiffness,
+                                          std::optional<int> max_iterations) {
+  wr::WheelsetOnTrack setup;
   setup.wheel_profile = wheel_profile.value_or("");
   setup.rail_profile = rail_profile.value_or("");
   setup.nominal_radius = nominal_radius;
   setup.gauge = gauge;
   setup.cant = cant;
   wr::WheelsetContactOptions options;
-  options.solver = fastnorm::SolverSpec<double>::parse(solver);
+  options.solver = spec_of(solver, max_iterations, std::nullopt);
   options.grid.elements = elements;
   options.material = material;
   options.stiffness = stiffness;
-  return std::make_unique<PyWheelset>(setup, options);
+  wr::Track track = setup.track();  // first: a bad gauge is named as the gauge
+  return std::make_unique<PyWheelset>(std::move(track), setup, options);
 }
 
 std::string version() {
@@ -370,8 +377,8 @@ void bind_basics(py::module_& m) {
                              "(my, mx), the shape of arrays over the grid")
       .def("__repr__", [](const Grid& grid) {
         return "Grid(mx=" + std::to_string(grid.mx()) + ", my=" + std::to_string(grid.my()) +
-               ", dx_m=" + fastnorm::detail::to_text(grid.dx()) + ", dy_m=" + fastnorm::detail::to_text(grid.dy()) +
-               ", x0_m=" + fastnorm::detail::to_text(grid.x0()) + ", y0_m=" + fastnorm::detail::to_text(grid.y0()) +
+               ", dx_m=" + number(grid.dx()) + ", dy_m=" + number(grid.dy()) +
+               ", x0_m=" + number(grid.x0()) + ", y0_m=" + number(grid.y0()) +
                ")";
       });
 
@@ -400,7 +407,7 @@ void bind_basics(py::module_& m) {
       .def_readonly("contact_count", &PySolution::contact_count, "elements in contact")
       .def_readonly("at_edge", &PySolution::at_edge, "contact touches the grid's boundary (make the grid larger)")
       .def("__repr__", [](const PySolution& s) {
-        return "Solution(status='" + s.status + "', normal_force_n=" + fastnorm::detail::to_text(s.normal_force) +
+        return "Solution(status='" + s.status + "', normal_force_n=" + number(s.normal_force) +
                ", contact_count=" + std::to_string(s.contact_count) + ")";
       });
 
@@ -477,15 +484,21 @@ void bind_wheelset(py::module_& m) {
       .def_readonly("roll_rad", &wr::WheelsetPose::roll)
       .def_readonly("yaw_rad", &wr::WheelsetPose::yaw)
       .def("__repr__", [](const wr::WheelsetPose& pose) {
-        return "Pose(lateral_shift_m=" + fastnorm::detail::to_text(pose.y) + ", vertical_m=" +
-               fastnorm::detail::to_text(pose.z) + ", roll_rad=" + fastnorm::detail::to_text(pose.roll) +
-               ", yaw_rad=" + fastnorm::detail::to_text(pose.yaw) + ")";
+        return "Pose(lateral_shift_m=" + number(pose.y) + ", vertical_m=" +
+               number(pose.z) + ", roll_rad=" + number(pose.roll) +
+               ", yaw_rad=" + number(pose.yaw) + ")";
       });
 
   py::class_<PyPatch>(m, "Patch", "One contact patch. Track frame: x forward, y right, z down.")
       .def_readonly("grid", &PyPatch::grid, "the patch's grid in its tangent plane")
       .def_readonly("solution", &PyPatch::solution, "pressures on grid and the solve's status")
       .def_readonly("undeformed_distance_m", &PyPatch::undeformed_distance, "h at approach 0 (m), shape (my, mx)")
+      .def_readonly("reference_m", &PyPatch::reference,
+                    "the grid's origin P on the rail (m): element [j, i] lies at reference_m + x_i e_x + s_j t_s")
+      .def_readonly("e_x", &PyPatch::e_x, "the grid's x axis, the rolling direction")
+      .def_readonly("t_s", &PyPatch::t_s, "the grid's y axis, lateral in the tangent plane")
+      .def_readonly("normal", &PyPatch::normal, "n, the normal into the rail")
+      .def_readonly("contact_elements", &PyPatch::contact_elements)
       .def_readonly("normal_force_n", &PyPatch::normal_force, "Fn (N)")
       .def_readonly("force_n", &PyPatch::force, "the normal force on the wheel, track frame (N)")
       .def_readonly("moment_nm", &PyPatch::moment, "its moment about the wheelset centre (N m)")
@@ -499,7 +512,39 @@ void bind_wheelset(py::module_& m) {
       .def_readonly("max_pressure_pa", &PyPatch::max_pressure)
       .def_readonly("flange_climb", &PyPatch::flange_climb, "the reference point is on the flange's steepest flank "
                                                             "or beyond")
-      .def_readonly("history", &PyPatch::history, "'continued', 'appeared', 'merged' or 'split' since the last call");
+      .def_readonly("history", &PyPatch::history, "'continued', 'appeared', 'merged' or 'split' since the last call")
+      .def("__repr__", [](const PyPatch& patch) {
+        return "Patch(normal_force_n=" + number(patch.normal_force) + ", contact_angle_rad=" +
+               number(patch.contact_angle) + ", profile_y_m=" + number(patch.profile_y) + ", grid=" +
+               std::to_string(patch.grid.mx()) + "x" + std::to_string(patch.grid.my()) + ", contact_elements=" +
+               std::to_string(patch.contact_elements) + ", status='" + patch.solution.status + "', history='" +
+               patch.history + "')";
+      });
+
+  py::class_<wr::StepStatus>(m, "StepStatus",
+                             "How an evaluate ended: ok, or the first patch whose solve gave no usable answer.")
+      .def_property_readonly("code", [](const wr::StepStatus& status) { return wr::to_string(status.code); },
+                             "'ok', 'patch failed' or 'not solved'")
+      .def_property_readonly("ok", &wr::StepStatus::ok)
+      .def_property_readonly("wheel",
+                             [](const wr::StepStatus& status) -> std::optional<std::string> {
+                               if (status.patch < 0) return std::nullopt;
+                               return wr::to_string(status.side);
+                             },
+                             "'left' or 'right' for the failed patch, else None")
+      .def_property_readonly("patch",
+                             [](const wr::StepStatus& status) -> std::optional<int> {
+                               if (status.patch < 0) return std::nullopt;
+                               return status.patch;
+                             },
+                             "the failed patch's index in its wheel's patches, else None")
+      .def_property_readonly("solver_status",
+                             [](const wr::StepStatus& status) { return fastnorm::to_string(status.solver_status); })
+      .def_readonly("message", &wr::StepStatus::message)
+      .def("__repr__", [](const wr::StepStatus& status) {
+        return std::string("StepStatus('") + wr::to_string(status.code) + "'" +
+               (status.message.empty() ? "" : ", '" + status.message + "'") + ")";
+      });
 
   py::class_<PyWheel>(m, "Wheel", "One wheel's patches (tread first) and totals.")
       .def_readonly("side", &PyWheel::side)
@@ -507,14 +552,28 @@ void bind_wheelset(py::module_& m) {
       .def_readonly("force_n", &PyWheel::force)
       .def_readonly("moment_nm", &PyWheel::moment)
       .def_readonly("normal_force_n", &PyWheel::normal_force)
-      .def_readonly("flange_climb", &PyWheel::flange_climb);
+      .def_readonly("flange_climb", &PyWheel::flange_climb)
+      .def_readonly("status", &PyWheel::status, "this wheel's StepStatus")
+      .def("__repr__", [](const PyWheel& wheel) {
+        return "Wheel(side='" + wheel.side + "', patches=" + std::to_string(wheel.patches.size()) +
+               ", normal_force_n=" + number(wheel.normal_force) + ", flange_climb=" +
+               (wheel.flange_climb ? "True" : "False") + ", status='" + wr::to_string(wheel.status.code) + "')";
+      });
 
   py::class_<PyWheelsetResult>(m, "WheelsetResult", "Both wheels at one pose.")
       .def_readonly("pose", &PyWheelsetResult::pose)
       .def_readonly("wheels", &PyWheelsetResult::wheels, "[left, right]")
       .def_readonly("force_n", &PyWheelsetResult::force, "on the wheelset, track frame (N)")
       .def_readonly("moment_nm", &PyWheelsetResult::moment, "about its centre (N m)")
-      .def_readonly("ok", &PyWheelsetResult::ok, "every patch solved with a usable answer");
+      .def_readonly("status", &PyWheelsetResult::status,
+                    "StepStatus: ok, or the first failed patch (wheel, patch, solver status, message)")
+      .def_property_readonly("ok", [](const PyWheelsetResult& result) { return result.status.ok(); },
+                             "every patch solved with a usable answer")
+      .def("__repr__", [](const PyWheelsetResult& result) {
+        return "WheelsetResult(patches=" + std::to_string(result.wheels[0].patches.size()) + "+" +
+               std::to_string(result.wheels[1].patches.size()) + ", force_n=" + vector_text(result.force) +
+               ", status='" + wr::to_string(result.status.code) + "')";
+      });
 
   py::class_<PyEquilibrium>(m, "Equilibrium", "The static equilibrium of a loaded wheelset.")
       .def_readonly("status", &PyEquilibrium::status,
@@ -527,7 +586,13 @@ void bind_wheelset(py::module_& m) {
       .def_readonly("lateral_force_n", &PyEquilibrium::lateral_force, "the lateral force needed to hold y (N)")
       .def_readonly("vertical_residual_n", &PyEquilibrium::vertical_residual)
       .def_readonly("roll_residual_nm", &PyEquilibrium::roll_residual)
-      .def_readonly("iterations", &PyEquilibrium::iterations, "contact evaluations");
+      .def_readonly("iterations", &PyEquilibrium::iterations, "contact evaluations")
+      .def("__repr__", [](const PyEquilibrium& found) {
+        return "Equilibrium(status='" + found.status + "', vertical_m=" + number(found.pose.z) + ", roll_rad=" +
+               number(found.pose.roll) + ", vertical_force_n=" + number(found.vertical_force) +
+               ", lateral_force_n=" + number(found.lateral_force) + ", iterations=" +
+               std::to_string(found.iterations) + ")";
+      });
 
   py::class_<PyWheelset>(m, "WheelsetContact",
                          "The contact model of one wheelset on its track (docs/wheel-rail.md §9), kept between "
@@ -536,14 +601,19 @@ void bind_wheelset(py::module_& m) {
       .def(py::init(&make_wheelset), py::kw_only(), "solver"_a = "norm", "elements"_a = 60,
            "wheel_profile"_a = py::none(), "rail_profile"_a = py::none(),
            "nominal_radius_m"_a = wr::WheelsetLayout().nominal_radius, "gauge_m"_a = wr::TrackLayout().gauge,
-           "cant_rad"_a = wr::TrackLayout().cant, "material"_a = Material::steel(), "stiffness"_a = true)
+           "cant_rad"_a = wr::TrackLayout().cant, "material"_a = Material::steel(), "stiffness"_a = true,
+           "max_iterations"_a = py::none())
       .def(
           "evaluate",
           [](PyWheelset& model, double y, double z, double roll, double yaw) {
             return model.evaluate({y, z, roll, yaw});
           },
           py::kw_only(), "lateral_shift_m"_a = 0.0, "vertical_m"_a = 0.0, "roll_rad"_a = 0.0, "yaw_rad"_a = 0.0,
-          "Every wheel's patches, forces and stiffness at a pose (see Pose).")
+          "Every wheel's patches, forces and stiffness at a pose (see Pose). result.status says whether every "
+          "patch solve gave a usable answer, and if not which.")
+      .def(
+          "evaluate", [](PyWheelset& model, const wr::WheelsetPose& pose) { return model.evaluate(pose); }, "pose"_a,
+          "The same at a Pose, e.g. an Equilibrium's.")
       .def("equilibrium", &PyWheelset::equilibrium, py::kw_only(), "load_n"_a, "lateral_shift_m"_a = 0.0,
            "yaw_rad"_a = 0.0, "force_tolerance"_a = wr::EquilibriumOptions().force_tolerance,
            "max_iterations"_a = wr::EquilibriumOptions().max_iterations,

@@ -42,7 +42,6 @@
 #include <vector>
 
 #include "support/arguments.hpp"
-#include "support/wheelset_setup.hpp"
 #include "svg.hpp"
 
 namespace {
@@ -73,7 +72,7 @@ fastnorm_example::CommandLine command_line(Arguments& a) {
                    "An S1002 wheelset on UIC60 rails (or measured profiles) in static equilibrium; one line per contact patch.");
   line.option("--y", a.y_mm, "MM", "lateral shift of the wheelset", strictly_within(-y_limit, y_limit));
   line.option("--yaw", a.yaw_deg, "DEG", "yaw angle of the wheelset", strictly_within(-yaw_limit, yaw_limit));
-  const fastnorm_example::Range load_range{0, wr::detail::max_load, true, false};
+  const fastnorm_example::Range load_range{0, wr::max_equilibrium_load, true, false};
   line.option("--load", a.load, "N", "vertical load on the wheelset (z and roll found)", load_range);
   line.option("--fz", a.fz, "N", "single-wheel mode: vertical force on the wheel --wheel", load_range);
   line.choice("--wheel", a.wheel, {"left", "right"}, "single-wheel mode: the loaded wheel");
@@ -135,13 +134,14 @@ struct Setup {
 };
 
 Setup setup_of(const Arguments& a) {
-  fastnorm_example::WheelsetSetup setup;
+  wr::WheelsetOnTrack setup;
   setup.wheel_profile = a.wheel_profile;
   setup.rail_profile = a.rail_profile;
   setup.nominal_radius = a.radius_mm * 1e-3;
   setup.gauge = a.gauge_mm * 1e-3;
   setup.cant = a.cant;
-  return {fastnorm_example::track_of(setup), fastnorm_example::wheelset_of(setup)};
+  wr::Track track = setup.track();  // first: a bad gauge is named as the gauge
+  return {std::move(track), setup.wheelset()};
 }
 
 wr::PatchGridOptions grid_options(const Arguments& a) {

@@ -340,19 +340,20 @@ Case<Scalar> read_case_file(const std::string& path) {
   return read_case<Scalar>(in, path);
 }
 
-namespace detail {
-/// The format stores one E and ν: refuses a material whose bodies differ.
+/// Whether a case of `material` can be written: the format stores one E and ν.
+/// @throws fastnorm::invalid_argument naming `material` when its two bodies differ
 template <typename Scalar>
-void check_one_material(const Material<Scalar>& material) {
+void check_case_material(const Material<Scalar>& material) {
   FASTNORM_CHECK(material.young_modulus(1) == material.young_modulus(2) &&
                      material.poisson_ratio(1) == material.poisson_ratio(2),
                  "material: a .case file holds one material, body 2 must equal body 1");
 }
-}  // namespace detail
 
 /// Writes a case (and its result, if any) in the `.case` format, full precision.
+/// @throws fastnorm::invalid_argument for a material whose two bodies differ (check_case_material)
 template <typename Scalar>
 void write_case(std::ostream& out, const Case<Scalar>& problem) {
+  check_case_material(problem.material);
   const auto& grid = problem.grid;
   out << std::setprecision(std::numeric_limits<Scalar>::max_digits10);
   auto block = [&](const Eigen::Matrix<Scalar, Eigen::Dynamic, 1>& values) {
@@ -391,7 +392,7 @@ void write_case(std::ostream& out, const Case<Scalar>& problem) {
 ///         one), or the file cannot be opened or written
 template <typename Scalar>
 void write_case_file(const std::string& path, const Case<Scalar>& problem) {
-  detail::check_one_material(problem.material);
+  check_case_material(problem.material);
   std::ofstream out(path);
   FASTNORM_CHECK(out.good(), "path: cannot open '" + path + "' for writing");
   write_case(out, problem);

@@ -46,6 +46,14 @@ std::string to_text(const Value& value) {
 }
 
 }  // namespace detail
+
+/// For code that checks its own input as fastnorm does (tools, bindings, a user's model):
+/// `describe(what, value)` gives "what (got value)" with full precision, and
+/// `check_positive(value, what)` throws fastnorm::invalid_argument unless the value is
+/// finite and positive.
+using detail::check_positive;
+using detail::describe;
+
 }  // namespace fastnorm
 
 /// Throws fastnorm::invalid_argument("fastnorm: " + message) unless `condition` holds.

@@ -13,3 +13,4 @@
 #include "fastnorm/wheelrail/patch.hpp"
 #include "fastnorm/wheelrail/equilibrium.hpp"
 #include "fastnorm/wheelrail/wheelset_contact.hpp"
+#include "fastnorm/wheelrail/setup.hpp"

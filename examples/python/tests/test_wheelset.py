@@ -49,3 +49,59 @@ def test_a_wheelset_in_the_air_has_no_patches(model):
     result = model.evaluate(vertical_m=-2e-3)  # z is down: 2 mm above the rails
     assert all(not wheel.patches for wheel in result.wheels)
     assert np.array_equal(result.force_n, np.zeros(3))
+
+
+def test_pressures_placed_in_the_track_frame_give_the_pressure_centre(model):
+    result = model.evaluate(lateral_shift_m=4e-3, vertical_m=0.1e-3, yaw_rad=2e-3)
+    for patch in (patch for wheel in result.wheels for patch in wheel.patches):
+        grid = patch.grid
+        pressure = patch.solution.pressure_pa  # [j, i]
+        x = grid.x0_m + grid.dx_m * np.arange(grid.mx)
+        s = grid.y0_m + grid.dy_m * np.arange(grid.my)
+        # element [j, i] at reference + x_i e_x + s_j t_s
+        points = (patch.reference_m[None, None, :] + x[None, :, None] * patch.e_x[None, None, :]
+                  + s[:, None, None] * patch.t_s[None, None, :])
+        centroid = (pressure[:, :, None] * points).sum(axis=(0, 1)) / pressure.sum()
+        assert np.allclose(centroid, patch.pressure_centre_m, rtol=0, atol=1e-12)
+        assert np.allclose(patch.force_n, -patch.normal_force_n * patch.normal, rtol=0,
+                           atol=1e-9 * patch.normal_force_n)
+        assert patch.contact_elements == int(patch.solution.in_contact.sum())
+
+
+def test_a_failed_patch_solve_is_reported_with_its_wheel_and_patch():
+    starved = fastnorm.WheelsetContact(solver="norm", elements=20, max_iterations=1)
+    result = starved.evaluate(lateral_shift_m=3e-3, vertical_m=0.1e-3)
+    assert not result.ok
+    assert result.status.code == "patch failed"
+    # the first patch, left wheel first, whose solve gave no usable answer
+    usable = ("converged", "no contact", "cycled")
+    failed = [(wheel.side, k, patch.solution.status) for wheel in result.wheels
+              for k, patch in enumerate(wheel.patches) if patch.solution.status not in usable]
+    assert failed
+    side, index, status = failed[0]
+    assert (result.status.wheel, result.status.patch, result.status.solver_status) == (side, index, status)
+    assert f"{side} wheel, patch {index}" in result.status.message
+    assert result.status.solver_status == "iteration limit"
+    fine = fastnorm.WheelsetContact(solver="norm", elements=20).evaluate(lateral_shift_m=3e-3, vertical_m=0.1e-3)
+    assert fine.ok and fine.status.code == "ok" and fine.status.wheel is None
+
+
+def test_evaluate_takes_the_pose_an_equilibrium_returns(model):
+    found = model.equilibrium(load_n=200e3, lateral_shift_m=2e-3)
+    by_pose = model.evaluate(found.pose)
+    by_keywords = model.evaluate(lateral_shift_m=found.pose.lateral_shift_m, vertical_m=found.pose.vertical_m,
+                                 roll_rad=found.pose.roll_rad, yaw_rad=found.pose.yaw_rad)
+    assert np.array_equal(by_pose.force_n, by_keywords.force_n)
+
+
+def test_every_result_object_prints_its_key_figures(model):
+    result = model.evaluate(lateral_shift_m=3e-3, vertical_m=0.1e-3)
+    found = model.equilibrium(load_n=200e3)
+    texts = [repr(result), repr(result.status), repr(result.wheels[1]), repr(result.wheels[1].patches[0]),
+             repr(found), repr(found.pose), repr(result.wheels[1].patches[0].solution)]
+    for text in texts:
+        assert " object at 0x" not in text
+    assert repr(result).startswith("WheelsetResult(patches=")
+    assert "status='ok'" in repr(result)
+    assert repr(found).startswith("Equilibrium(status='converged'")
+    assert "normal_force_n=" in repr(result.wheels[1].patches[0])

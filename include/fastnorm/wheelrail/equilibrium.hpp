@@ -57,6 +57,7 @@ struct EquilibriumOptions {
 };
 
 enum class EquilibriumStatus {
+  not_solved,     ///< a default-constructed Equilibrium: no search has filled it
   converged,      ///< residuals below tolerance
   lost_contact,   ///< a wheel that must carry load has no contact with its rail
   not_converged,  ///< the step limit was reached
@@ -73,6 +74,7 @@ enum class EquilibriumStatus {
 
 inline const char* to_string(EquilibriumStatus status) {
   switch (status) {
+    case EquilibriumStatus::not_solved: return "not solved";
     case EquilibriumStatus::converged: return "converged";
     case EquilibriumStatus::lost_contact: return "lost contact";
     case EquilibriumStatus::not_converged: return "not converged";
@@ -84,7 +86,7 @@ inline const char* to_string(EquilibriumStatus status) {
 
 /// The loaded wheelset at rest.
 struct Equilibrium {
-  EquilibriumStatus status = EquilibriumStatus::converged;
+  EquilibriumStatus status = EquilibriumStatus::not_solved;
   std::string message;
   WheelsetPose pose;                  ///< z and roll found (y, yaw as given)
   /// Every patch of the loaded wheel(s) at `pose`, as WheelsetContact gives it: exact h,
@@ -98,6 +100,10 @@ struct Equilibrium {
 
   bool ok() const { return status == EquilibriumStatus::converged; }
 };
+
+/// The largest load an equilibrium takes (N): 1000 t, far beyond any wheelset's, and small
+/// enough that the approach guess and the patch sizes stay finite.
+inline constexpr double max_equilibrium_load = 1e7;
 
 namespace detail {
 
@@ -409,14 +415,10 @@ class EquilibriumSearch {
   Eigen::Vector2d residual_ = Eigen::Vector2d::Zero();
 };
 
-/// The largest load an equilibrium takes (N): 1000 t, far beyond any wheelset's, and small
-/// enough that the approach guess and the patch sizes stay finite.
-inline constexpr double max_load = 1e7;
-
 inline void check_load(double load, const char* load_name) {
-  FASTNORM_CHECK(std::isfinite(load) && load > 0 && load <= max_load,
+  FASTNORM_CHECK(std::isfinite(load) && load > 0 && load <= max_equilibrium_load,
                  fastnorm::detail::describe(std::string("equilibrium: ") + load_name + " must lie in (0, " +
-                                                fastnorm::detail::to_text(max_load) + "] N",
+                                                fastnorm::detail::to_text(max_equilibrium_load) + "] N",
                                             load));
 }
 
