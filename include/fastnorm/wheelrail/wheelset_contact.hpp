@@ -391,6 +391,7 @@ class WheelsetContact {
       auto& patch = wheel.patches[k].patch;
       patch.frame = next[k].frame;
       patch.grid = next[k].grid;
+      fit_storage(wheel.patches[k], patch.grid.size());
       undeformed_distance(track_, wheelset_, pose, patch.frame, patch.grid, patch.undeformed_distance);
     }
     wheel.times.distance = detail::seconds_since(clock);
@@ -584,6 +585,46 @@ class WheelsetContact {
     return solvers_.size() - 1;
   }
 
+  /// Gives the result patch `out` an h and a solution of `length` elements: its own, if they
+  /// have that length; else spares of that length, its own going to the spares of theirs.
+  /// Eigen's vectors keep no capacity, so a result slot that meets another grid size would
+  /// otherwise allocate whenever patches appear, merge or vanish.
+  void fit_storage(PatchContact& out, Eigen::Index length) {
+    Eigen::VectorXd& distance = out.patch.undeformed_distance;
+    if (distance.size() != length) {
+      if (distance.size() > 0) spares_of(distance.size()).distances.push_back(std::move(distance));
+      take_spare(spares_of(length).distances, distance);
+    }
+    if (out.solution.pressure.size() != length) {
+      if (out.solution.pressure.size() > 0) {
+        spares_of(out.solution.pressure.size()).solutions.push_back(std::move(out.solution));
+      }
+      take_spare(spares_of(length).solutions, out.solution);
+    }
+  }
+
+  template <typename T>
+  static void take_spare(std::vector<T>& spares, T& into) {
+    if (spares.empty()) return;  // none yet: the vector is sized (once) where it is filled
+    into = std::move(spares.back());
+    spares.pop_back();
+  }
+
+  /// Vectors of one length that no result patch holds at the moment.
+  struct SpareStorage {
+    Eigen::Index length = 0;
+    std::vector<Eigen::VectorXd> distances;
+    std::vector<Solution<double>> solutions;
+  };
+
+  SpareStorage& spares_of(Eigen::Index length) {
+    for (auto& spare : spare_storage_) {
+      if (spare.length == length) return spare;
+    }
+    spare_storage_.push_back({length, {}, {}});
+    return spare_storage_.back();
+  }
+
   /// A spare workspace of solver `s`, or a new one.
   Workspace take_workspace(std::size_t s) {
     auto& spare = solvers_[s].spare;
@@ -623,6 +664,7 @@ class WheelsetContact {
   std::array<std::vector<State>, 2> next_states_;  // the same, being filled by a call
   std::vector<State> spare_states_;                    // states beyond the patch count, storage kept
   std::vector<PatchContact> spare_patches_;            // result patches beyond the patch count, storage kept
+  std::vector<SpareStorage> spare_storage_;            // h and solutions by length (fit_storage)
   std::vector<std::vector<std::size_t>> predecessors_;  // of each new patch (match); the first `count` in use
   std::vector<int> successor_counts_;                  // of each previous patch (match)
   std::vector<ContactRegion> regions_;                 // of the wheel being evaluated, and spares
