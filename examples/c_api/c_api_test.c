@@ -202,8 +202,17 @@ static void wheelset_equilibrium_and_time_step(void) {
   }
   printf("time step at that pose: vertical force on the wheelset %.6g N\n", force[2]);
   EXPECT(fabs(vertical - force[2]) <= 1e-9 * fabs(force[2]));
+  /* The equilibrium is the model's own: at its pose the model carries the load. */
+  EXPECT(fabs(-force[2] / load - 1) <= 1e-6);
   REQUIRE_OK(fastnorm_wheelset_step_status(model, &step));
   EXPECT(step.code == FASTNORM_STEP_OK && step.wheel == -1 && step.patch == -1);
+  /* A reset forgets the history: status and patches read as after create. */
+  REQUIRE_OK(fastnorm_wheelset_reset(model));
+  REQUIRE_OK(fastnorm_wheelset_step_status(model, &step));
+  EXPECT(step.code == FASTNORM_STEP_NOT_SOLVED);
+  int after_reset = -1;
+  REQUIRE_OK(fastnorm_wheelset_patch_count(model, 1, &after_reset));
+  EXPECT(after_reset == 0);
   fastnorm_patch unused;
   expect_error(fastnorm_wheelset_patch(model, 2, 0, &unused), "wheel");
   fastnorm_wheelset_destroy(model);

@@ -369,6 +369,16 @@ int fastnorm_wheelset_evaluate(fastnorm_wheelset* model, const fastnorm_pose* po
   });
 }
 
+int fastnorm_wheelset_reset(fastnorm_wheelset* model) {
+  return guarded("fastnorm_wheelset_reset", [&] {
+    require_pointer(model, "model");
+    model->model.reset();
+    model->equilibrium.reset();
+    model->step = {};
+    for (auto& patches : model->patches) patches.clear();
+  });
+}
+
 int fastnorm_wheelset_step_status(const fastnorm_wheelset* model, fastnorm_step_status* status) {
   return guarded("fastnorm_wheelset_step_status", [&] {
     require_pointer(model, "model");
@@ -435,10 +445,7 @@ int fastnorm_wheelset_equilibrium(fastnorm_wheelset* model, double load, double 
     model->equilibrium.reset();
     model->step = {};
     for (auto& patches : model->patches) patches.clear();
-    wr::EquilibriumOptions options;
-    options.contact = model->model.options();
-    model->equilibrium =
-        wr::solve_equilibrium(model->model.track(), model->model.wheelset(), y, yaw, load, options);
+    model->equilibrium = wr::solve_equilibrium(model->model, y, yaw, load);
     const auto& found = *model->equilibrium;
     for (const auto& patch : found.patches) model->patches[patch.patch.frame.side == wr::Side::right ? 1 : 0].push_back(&patch);
     fastnorm_equilibrium value{};

@@ -204,6 +204,9 @@ FASTNORM_C_API void fastnorm_wheelset_destroy(fastnorm_wheelset* model);
 FASTNORM_C_API int fastnorm_wheelset_evaluate(fastnorm_wheelset* model, const fastnorm_pose* pose, double* force,
                                               double* moment);
 FASTNORM_C_API int fastnorm_wheelset_step_status(const fastnorm_wheelset* model, fastnorm_step_status* status);
+/* The next evaluate starts cold: no previous patches, contact sets or search (storage kept);
+ * the patches and status read as after create. */
+FASTNORM_C_API int fastnorm_wheelset_reset(fastnorm_wheelset* model);
 FASTNORM_C_API int fastnorm_wheelset_patch_count(const fastnorm_wheelset* model, int wheel, int* count);
 FASTNORM_C_API int fastnorm_wheelset_patch(const fastnorm_wheelset* model, int wheel, int patch, fastnorm_patch* out);
 /* The patch's pressures (Pa), grid.mx*grid.my values, written. */
@@ -230,7 +233,10 @@ enum {
   FASTNORM_EQUILIBRIUM_FLANGE_CLIMB = 5
 };
 
-/* The equilibrium; the model then holds its patches (fastnorm_wheelset_patch reads them). */
+/* The equilibrium of this model as it is (its solver, element sizes, grids and starts; its
+ * state follows the poses the search evaluates), so that an evaluate at the pose found
+ * carries the load to the force tolerance 1e-6; the model then holds its patches
+ * (fastnorm_wheelset_patch reads them). */
 FASTNORM_C_API int fastnorm_wheelset_equilibrium(fastnorm_wheelset* model, double load, double y, double yaw,
                                                  fastnorm_equilibrium* result);
 

@@ -307,13 +307,13 @@ class PyWheelset {
 
   PyEquilibrium equilibrium(double load, double y, double yaw, double force_tolerance, int max_iterations) {
     wr::EquilibriumOptions options;
-    options.contact = model_.options();
     options.force_tolerance = force_tolerance;
     options.max_iterations = max_iterations;
     std::optional<wr::Equilibrium> found;
     {
       py::gil_scoped_release released;
-      found = wr::solve_equilibrium(model_.track(), model_.wheelset(), y, yaw, load, options);
+      const std::lock_guard<std::mutex> lock(calls_);
+      found = wr::solve_equilibrium(model_, y, yaw, load, options);
     }
     PyEquilibrium out;
     out.status = wr::to_string(found->status);
@@ -330,6 +330,11 @@ class PyWheelset {
   }
 
   double flange_angle() const { return model_.wheelset().flange_angle(); }
+
+  void reset() {
+    const std::lock_guard<std::mutex> lock(calls_);
+    model_.reset();
+  }
 
  private:
   wr::WheelsetContact<> model_;
@@ -617,8 +622,13 @@ void bind_wheelset(py::module_& m) {
       .def("equilibrium", &PyWheelset::equilibrium, py::kw_only(), "load_n"_a, "lateral_shift_m"_a = 0.0,
            "yaw_rad"_a = 0.0, "force_tolerance"_a = wr::EquilibriumOptions().force_tolerance,
            "max_iterations"_a = wr::EquilibriumOptions().max_iterations,
-           "z and roll at which the rails carry load_n (N) at the lateral shift and yaw, with this model's "
-           "solver, elements and material.")
+           "z and roll at which the rails carry load_n (N) at the lateral shift and yaw, for this model as it "
+           "is (its solver, elements, grids and starts): evaluate at the pose found carries the load to "
+           "force_tolerance. The model's state follows the poses the search evaluates.")
+      .def(
+          "reset",
+          [](PyWheelset& model) { model.reset(); },
+          "The next evaluate starts cold: no previous patches, contact sets or search.")
       .def_property_readonly("flange_angle_rad", &PyWheelset::flange_angle,
                              "the steepest angle of the wheel's flange face");
 }

@@ -6,6 +6,7 @@
 #include <catch2/catch.hpp>
 #include <fastnorm/fastnorm.hpp>
 
+#include <cmath>
 #include <optional>
 #include <string>
 #include <utility>
@@ -142,6 +143,31 @@ TEST_CASE("The contact search knows a track by its id, not by its address", "[wh
     CHECK(regions[k].centre == fresh[k].centre);
     CHECK(regions[k].slices.size() == fresh[k].slices.size());
   }
+}
+
+TEST_CASE("The equilibrium of a given model is that model's own", "[wheelrail][model]") {
+  wr::WheelsetContact<fastnorm::NormSolver<>> model(wr::Track(), wr::Wheelset(), coarse("norm"));
+  const double load = 2e5;
+  const auto found = wr::solve_equilibrium(model, 3e-3, 1e-3, load);
+  REQUIRE(found.ok());
+  // The model's element sizes, not sizes chosen at the pose: the patches are on its lattice.
+  for (const auto& patch : found.patches) {
+    CHECK(patch.patch.grid.dx() == model.element_length());
+    CHECK(patch.patch.grid.dy() == model.element_width());
+  }
+  // Evaluated again at the pose found, the model carries the load to the force tolerance.
+  const auto& again = model.evaluate(found.pose);
+  REQUIRE(again.ok());
+  double vertical = 0;
+  for (const auto& wheel : again.wheels) {
+    for (const auto& patch : wheel.patches) vertical += patch.normal_force * std::cos(patch.patch.frame.inclination);
+  }
+  CHECK(std::abs(vertical - load) <= wr::EquilibriumOptions().force_tolerance * load);
+  // A model without stiffness cannot drive Newton.
+  auto options = coarse("norm");
+  options.stiffness = false;
+  wr::WheelsetContact<fastnorm::NormSolver<>> stiff_less(wr::Track(), wr::Wheelset(), options);
+  CHECK_THROWS_WITH(wr::solve_equilibrium(stiff_less, 3e-3, 0, load), Contains("stiffness must be on"));
 }
 
 TEST_CASE("The step status names the wheel and patch that failed, and why", "[wheelrail][model]") {

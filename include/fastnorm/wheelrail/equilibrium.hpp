@@ -138,13 +138,15 @@ class EquilibriumSearch {
         !stage<Solver>(options_.contact.solver, options_.force_tolerance, pose, true)) {
       return finish(failure_, pose);
     }
-    for (const PatchContact& patch : result_.patches) {
-      if (wheelset_.at_flange_climb(patch.profile_y)) {
-        result_.message = on_flange(patch);
-        return finish(EquilibriumStatus::flange_climb, pose);
-      }
-    }
-    return finish(EquilibriumStatus::converged, pose);
+    return finish_balanced(pose);
+  }
+
+  /// The search on a given model, as it is (its element sizes, grids and starts): one stage
+  /// to force_tolerance. The model's state follows the poses evaluated.
+  template <typename Model>
+  Equilibrium run_on(Model& model, WheelsetPose pose) {
+    if (!settle(model, options_.force_tolerance, pose, true)) return finish(failure_, pose);
+    return finish_balanced(pose);
   }
 
  private:
@@ -168,6 +170,12 @@ class EquilibriumSearch {
       return false;
     }
     WheelsetContact<StageSolver> model(track_, wheelset_, contact_options(sizes, solver));
+    return settle(model, tolerance, pose, last);
+  }
+
+  /// Newton on `model` to `tolerance`; false (and failure_ set) when it did not balance.
+  template <typename Model>
+  bool settle(Model& model, double tolerance, WheelsetPose& pose, bool last) {
     const Step outcome = newton(model, pose, tolerance);
     if (outcome == Step::balanced) {
       if (last) store();  // the patches, which the model holds
@@ -394,6 +402,17 @@ class EquilibriumSearch {
            fastnorm::detail::to_text(wheelset_.flange_climb_point() * 1e3) + " mm): flange climb";
   }
 
+  /// Balanced at `pose`: converged, or at flange climb when a patch lies on the flank.
+  Equilibrium finish_balanced(const WheelsetPose& pose) {
+    for (const PatchContact& patch : result_.patches) {
+      if (wheelset_.at_flange_climb(patch.profile_y)) {
+        result_.message = on_flange(patch);
+        return finish(EquilibriumStatus::flange_climb, pose);
+      }
+    }
+    return finish(EquilibriumStatus::converged, pose);
+  }
+
   Equilibrium finish(EquilibriumStatus status, const WheelsetPose& pose) {
     result_.status = status;
     result_.pose = pose;
@@ -414,6 +433,16 @@ class EquilibriumSearch {
   Eigen::VectorXd force_, stiffness_, cosine_, lever_;
   Eigen::Vector2d residual_ = Eigen::Vector2d::Zero();
 };
+
+/// Where the two-wheel search starts: options.start's z and roll, or the rigid contact at
+/// (y, yaw) lowered by the approach guess.
+inline WheelsetPose equilibrium_start(const Track& track, const Wheelset& wheelset, double y, double yaw, double load,
+                                      const EquilibriumOptions& options, const SearchOptions& search) {
+  if (options.start) return {y, options.start->z, options.start->roll, yaw};
+  WheelsetPose start = rigid_contact_pose(track, wheelset, y, yaw, search);
+  start.z += approach_guess(load / 2, options);
+  return start;
+}
 
 inline void check_load(double load, const char* load_name) {
   FASTNORM_CHECK(std::isfinite(load) && load > 0 && load <= max_equilibrium_load,
@@ -439,15 +468,30 @@ Equilibrium solve_equilibrium(const Track& track, const Wheelset& wheelset, doub
   detail::check_load(load, "load");
   options.validate();
   check_spec_for<Solver>(options.contact.solver, "EquilibriumOptions: contact.solver");
-  WheelsetPose start{y, 0, 0, yaw};
-  if (options.start) {
-    start.z = options.start->z;
-    start.roll = options.start->roll;
-  } else {
-    start = rigid_contact_pose(track, wheelset, y, yaw, options.contact.search);
-    start.z += detail::approach_guess(load / 2, options);
-  }
+  const WheelsetPose start = detail::equilibrium_start(track, wheelset, y, yaw, load, options, options.contact.search);
   return detail::EquilibriumSearch<Solver>(track, wheelset, {Side::left, Side::right}, load, options).run(start);
+}
+
+/// The same on a given contact model, as it is: its solver, element sizes, lattice grids and
+/// starts (options.contact is not used; the model's options must compute the stiffness),
+/// so that the pose found is in equilibrium for that model itself, e.g. the first pose of
+/// a time integration with it (docs/wheel-rail.md §5). One Newton stage to
+/// options.force_tolerance; the model's state follows the poses the search evaluates
+/// (model.reset() forgets it).
+/// @throws fastnorm::invalid_argument for bad y, yaw, load or options, or a model without
+///         stiffness
+template <typename Solver>
+Equilibrium solve_equilibrium(WheelsetContact<Solver>& model, double y, double yaw, double load,
+                              const EquilibriumOptions& options = {}) {
+  check_pose({y, 0, 0, yaw}, "equilibrium");
+  detail::check_load(load, "load");
+  options.validate();
+  FASTNORM_CHECK(model.options().stiffness,
+                 "equilibrium: the model's options.stiffness must be on (the Newton Jacobian needs it)");
+  const WheelsetPose start = detail::equilibrium_start(model.track(), model.wheelset(), y, yaw, load, options,
+                                                       model.options().search);
+  return detail::EquilibriumSearch<Solver>(model.track(), model.wheelset(), {Side::left, Side::right}, load, options)
+      .run_on(model, start);
 }
 
 /// CONTACT's single-wheel mode: vertical force `vertical_force` (N) on the wheel of `side`,
