@@ -5,7 +5,7 @@ set -euo pipefail
 
 fastnorm_root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 fastnorm_packages=(cmake g++ gfortran libeigen3-dev catch2
-  python3-dev pybind11-dev python3-numpy python3-matplotlib python3-pytest)
+  python3-dev pybind11-dev python3-numpy python3-matplotlib python3-pytest python3-pip python3-setuptools)
 
 fastnorm_install_packages() {
   local missing=()

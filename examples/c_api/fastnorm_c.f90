@@ -1,0 +1,245 @@
+! fastnorm_c.f90: the C API of fastnorm (fastnorm_c.h) for Fortran 2003 and later, through
+! iso_c_binding: every constant, struct and function of the header, with the header's names.
+! Shipped with the C library (installed beside fastnorm_c.h); compile it with your code, it
+! needs nothing but the library. Strings going in are C strings: append c_null_char.
+! fastnorm_string turns a returned C string (last error, status name, version) into a
+! Fortran one. Units are SI; arrays over a grid hold element k = i + mx*j, i along x.
+module fastnorm_c
+  use iso_c_binding
+  implicit none
+
+  ! Return codes.
+  integer(c_int), parameter :: fastnorm_ok = 0, fastnorm_error_argument = 1, fastnorm_error_memory = 2, &
+                               fastnorm_error_internal = 3, fastnorm_error_patch_failed = 4
+  ! How a solve ended.
+  integer(c_int), parameter :: fastnorm_not_solved = 0, fastnorm_converged = 1, fastnorm_no_contact = 2, &
+                               fastnorm_iteration_limit = 3, fastnorm_cycled = 4, fastnorm_numerical_issue = 5
+  ! A patch's history against the previous evaluate.
+  integer(c_int), parameter :: fastnorm_patch_continued = 0, fastnorm_patch_appeared = 1, &
+                               fastnorm_patch_merged = 2, fastnorm_patch_split = 3
+  ! How an evaluate ended.
+  integer(c_int), parameter :: fastnorm_step_not_solved = 0, fastnorm_step_ok = 1, fastnorm_step_patch_failed = 2
+  ! How an equilibrium search ended.
+  integer(c_int), parameter :: fastnorm_equilibrium_not_solved = 0, fastnorm_equilibrium_converged = 1, &
+                               fastnorm_equilibrium_lost_contact = 2, fastnorm_equilibrium_not_converged = 3, &
+                               fastnorm_equilibrium_solver_failed = 4, fastnorm_equilibrium_flange_climb = 5
+
+  type, bind(c) :: fastnorm_grid
+    integer(c_int) :: mx, my
+    real(c_double) :: dx, dy, x0, y0
+  end type
+
+  type, bind(c) :: fastnorm_material
+    real(c_double) :: young_modulus_1, poisson_ratio_1, young_modulus_2, poisson_ratio_2
+  end type
+
+  type, bind(c) :: fastnorm_result
+    integer(c_int) :: status, iterations, contact_count, at_edge
+    real(c_double) :: normal_force, approach, residual
+  end type
+
+  type, bind(c) :: fastnorm_solver_options
+    integer(c_int) :: max_iterations
+    real(c_double) :: tolerance
+  end type
+
+  type, bind(c) :: fastnorm_wheelset_options
+    type(c_ptr) :: solver, wheel_profile, rail_profile  ! C strings (c_loc of a null-terminated string)
+    real(c_double) :: nominal_radius, gauge, cant
+    type(fastnorm_material) :: material
+    integer(c_int) :: elements, stiffness, max_iterations
+  end type
+
+  type, bind(c) :: fastnorm_pose
+    real(c_double) :: y, z, roll, yaw
+  end type
+
+  type, bind(c) :: fastnorm_patch
+    integer(c_int) :: status, at_edge, flange_climb, history, contact_elements
+    type(fastnorm_grid) :: grid
+    real(c_double) :: reference(3), e_x(3), t_s(3), normal(3), centre(3), pressure_centre(3)
+    real(c_double) :: profile_y, normal_force, force(3), moment(3), contact_angle, approach, max_pressure, stiffness
+  end type
+
+  type, bind(c) :: fastnorm_step_status
+    integer(c_int) :: code, wheel, patch, solver_status
+  end type
+
+  type, bind(c) :: fastnorm_equilibrium
+    integer(c_int) :: status, iterations
+    type(fastnorm_pose) :: pose
+    real(c_double) :: vertical_force, lateral_force
+    integer(c_int) :: patch_count(2)
+  end type
+
+  interface
+    type(c_ptr) function fastnorm_last_error() bind(c)
+      import :: c_ptr
+    end function
+    type(c_ptr) function fastnorm_status_name(status) bind(c)
+      import :: c_ptr, c_int
+      integer(c_int), value :: status
+    end function
+    type(c_ptr) function fastnorm_version() bind(c)
+      import :: c_ptr
+    end function
+
+    integer(c_int) function fastnorm_solver_create(name, grid, material, options, solver) bind(c)
+      import :: c_int, c_char, c_ptr, fastnorm_grid, fastnorm_material
+      character(kind=c_char), intent(in) :: name(*)
+      type(fastnorm_grid), intent(in) :: grid
+      type(fastnorm_material), intent(in) :: material
+      type(c_ptr), value :: options  ! c_loc of a fastnorm_solver_options, or c_null_ptr
+      type(c_ptr), intent(out) :: solver
+    end function
+    subroutine fastnorm_solver_destroy(solver) bind(c)
+      import :: c_ptr
+      type(c_ptr), value :: solver
+    end subroutine
+    integer(c_int) function fastnorm_solve_approach(solver, h, pressure, result) bind(c)
+      import :: c_int, c_ptr, c_double, fastnorm_result
+      type(c_ptr), value :: solver
+      real(c_double), intent(in) :: h(*)
+      real(c_double), intent(out) :: pressure(*)
+      type(fastnorm_result), intent(out) :: result
+    end function
+    integer(c_int) function fastnorm_solve_force(solver, h, normal_force, pressure, result) bind(c)
+      import :: c_int, c_ptr, c_double, fastnorm_result
+      type(c_ptr), value :: solver
+      real(c_double), intent(in) :: h(*)
+      real(c_double), value :: normal_force
+      real(c_double), intent(out) :: pressure(*)
+      type(fastnorm_result), intent(out) :: result
+    end function
+    integer(c_int) function fastnorm_solve_next(solver, h, normal_force, pressure, result) bind(c)
+      import :: c_int, c_ptr, c_double, fastnorm_result
+      type(c_ptr), value :: solver
+      real(c_double), intent(in) :: h(*)
+      real(c_double), value :: normal_force
+      real(c_double), intent(out) :: pressure(*)
+      type(fastnorm_result), intent(out) :: result
+    end function
+    integer(c_int) function fastnorm_normal_stiffness(solver, stiffness) bind(c)
+      import :: c_int, c_ptr, c_double
+      type(c_ptr), value :: solver
+      real(c_double), intent(out) :: stiffness
+    end function
+
+    integer(c_int) function fastnorm_case_read(path, problem) bind(c)
+      import :: c_int, c_char, c_ptr
+      character(kind=c_char), intent(in) :: path(*)
+      type(c_ptr), intent(out) :: problem
+    end function
+    subroutine fastnorm_case_destroy(problem) bind(c)
+      import :: c_ptr
+      type(c_ptr), value :: problem
+    end subroutine
+    integer(c_int) function fastnorm_case_info(problem, grid, material, force_control, control_value) bind(c)
+      import :: c_int, c_ptr, c_double, fastnorm_grid, fastnorm_material
+      type(c_ptr), value :: problem
+      type(fastnorm_grid), intent(out) :: grid
+      type(fastnorm_material), intent(out) :: material
+      integer(c_int), intent(out) :: force_control
+      real(c_double), intent(out) :: control_value
+    end function
+    integer(c_int) function fastnorm_case_undeformed_distance(problem, h) bind(c)
+      import :: c_int, c_ptr, c_double
+      type(c_ptr), value :: problem
+      real(c_double), intent(out) :: h(*)
+    end function
+    integer(c_int) function fastnorm_case_result(problem, pressure, result) bind(c)
+      import :: c_int, c_ptr, c_double, fastnorm_result
+      type(c_ptr), value :: problem
+      real(c_double), intent(out) :: pressure(*)
+      type(fastnorm_result), intent(out) :: result
+    end function
+    integer(c_int) function fastnorm_case_write(path, name, grid, material, force_control, control_value, h, &
+                                                pressure, result) bind(c)
+      import :: c_int, c_char, c_ptr, c_double, fastnorm_grid, fastnorm_material
+      character(kind=c_char), intent(in) :: path(*), name(*)
+      type(fastnorm_grid), intent(in) :: grid
+      type(fastnorm_material), intent(in) :: material
+      integer(c_int), value :: force_control
+      real(c_double), value :: control_value
+      real(c_double), intent(in) :: h(*)
+      type(c_ptr), value :: pressure, result  ! both c_null_ptr, or c_loc of the pressures and a fastnorm_result
+    end function
+
+    subroutine fastnorm_wheelset_options_default(options) bind(c)
+      import :: fastnorm_wheelset_options
+      type(fastnorm_wheelset_options), intent(out) :: options
+    end subroutine
+    integer(c_int) function fastnorm_wheelset_create(options, model) bind(c)
+      import :: c_int, c_ptr, fastnorm_wheelset_options
+      type(fastnorm_wheelset_options), intent(in) :: options
+      type(c_ptr), intent(out) :: model
+    end function
+    subroutine fastnorm_wheelset_destroy(model) bind(c)
+      import :: c_ptr
+      type(c_ptr), value :: model
+    end subroutine
+    integer(c_int) function fastnorm_wheelset_evaluate(model, pose, force, moment) bind(c)
+      import :: c_int, c_ptr, c_double, fastnorm_pose
+      type(c_ptr), value :: model
+      type(fastnorm_pose), intent(in) :: pose
+      real(c_double), intent(out) :: force(3), moment(3)
+    end function
+    integer(c_int) function fastnorm_wheelset_step_status(model, status) bind(c)
+      import :: c_int, c_ptr, fastnorm_step_status
+      type(c_ptr), value :: model
+      type(fastnorm_step_status), intent(out) :: status
+    end function
+    integer(c_int) function fastnorm_wheelset_reset(model) bind(c)
+      import :: c_int, c_ptr
+      type(c_ptr), value :: model
+    end function
+    integer(c_int) function fastnorm_wheelset_patch_count(model, wheel, count) bind(c)
+      import :: c_int, c_ptr
+      type(c_ptr), value :: model
+      integer(c_int), value :: wheel
+      integer(c_int), intent(out) :: count
+    end function
+    integer(c_int) function fastnorm_wheelset_patch(model, wheel, patch, out) bind(c)
+      import :: c_int, c_ptr, fastnorm_patch
+      type(c_ptr), value :: model
+      integer(c_int), value :: wheel, patch
+      type(fastnorm_patch), intent(out) :: out
+    end function
+    integer(c_int) function fastnorm_wheelset_patch_pressure(model, wheel, patch, pressure) bind(c)
+      import :: c_int, c_ptr, c_double
+      type(c_ptr), value :: model
+      integer(c_int), value :: wheel, patch
+      real(c_double), intent(out) :: pressure(*)
+    end function
+    integer(c_int) function fastnorm_wheelset_equilibrium(model, load, y, yaw, result) bind(c)
+      import :: c_int, c_ptr, c_double, fastnorm_equilibrium
+      type(c_ptr), value :: model
+      real(c_double), value :: load, y, yaw
+      type(fastnorm_equilibrium), intent(out) :: result
+    end function
+
+    pure integer(c_size_t) function c_strlen(text) bind(c, name="strlen")
+      import :: c_ptr, c_size_t
+      type(c_ptr), value :: text
+    end function
+  end interface
+
+contains
+
+  ! A C string returned by the library (fastnorm_last_error(), ...) as a Fortran string.
+  function fastnorm_string(text) result(value)
+    type(c_ptr), intent(in) :: text
+    character(len=:), allocatable :: value
+    character(kind=c_char), pointer :: characters(:)
+    integer :: n
+    if (.not. c_associated(text)) then
+      value = ""
+      return
+    end if
+    n = int(c_strlen(text))
+    call c_f_pointer(text, characters, [n])
+    allocate(character(len=n) :: value)
+    value = transfer(characters(1:n), value)
+  end function
+
+end module fastnorm_c
