@@ -331,6 +331,11 @@ class PyWheelset {
 
   double flange_angle() const { return model_.wheelset().flange_angle(); }
 
+  std::string description() const {
+    return "WheelsetContact(solver='" + model_.options().solver.name() + "', element_length_m=" +
+           number(model_.element_length()) + ", element_width_m=" + number(model_.element_width()) + ")";
+  }
+
   void reset() {
     const std::lock_guard<std::mutex> lock(calls_);
     model_.reset();
@@ -397,7 +402,12 @@ void bind_basics(py::module_& m) {
       .def_property_readonly("poisson_ratio_1", [](const Material& value) { return value.poisson_ratio(1); })
       .def_property_readonly("young_modulus_2_pa", [](const Material& value) { return value.young_modulus(2); })
       .def_property_readonly("poisson_ratio_2", [](const Material& value) { return value.poisson_ratio(2); })
-      .def_property_readonly("combined_modulus_pa", &Material::combined_modulus, "E* (Pa), docs/design.md §2");
+      .def_property_readonly("combined_modulus_pa", &Material::combined_modulus, "E* (Pa), docs/design.md §2")
+      .def("__repr__", [](const Material& value) {
+        return "Material(young_modulus_1_pa=" + number(value.young_modulus(1)) +
+               ", poisson_ratio_1=" + number(value.poisson_ratio(1)) + ", young_modulus_2_pa=" +
+               number(value.young_modulus(2)) + ", poisson_ratio_2=" + number(value.poisson_ratio(2)) + ")";
+      });
 
   py::class_<PySolution>(m, "Solution", "A solver's answer.")
       .def_readonly("status", &PySolution::status, "'converged', 'no contact', 'iteration limit', 'cycled', ...")
@@ -433,7 +443,11 @@ void bind_basics(py::module_& m) {
       .def("normal_stiffness_n_per_m", &PySolver::normal_stiffness,
            "dFn/d(approach) (N/m) at the contact set of the last solve_next")
       .def_property_readonly("name", &PySolver::name)
-      .def_property_readonly("grid", &PySolver::grid);
+      .def_property_readonly("grid", &PySolver::grid)
+      .def("__repr__", [](const PySolver& solver) {
+        return "Solver('" + solver.name() + "', grid=" + std::to_string(solver.grid().mx()) + "x" +
+               std::to_string(solver.grid().my()) + ")";
+      });
 }
 
 void bind_case_files(py::module_& m) {
@@ -441,7 +455,11 @@ void bind_case_files(py::module_& m) {
       .def_readonly("normal_force_n", &fastnorm::CaseResult<double>::normal_force)
       .def_readonly("approach_m", &fastnorm::CaseResult<double>::approach)
       .def_readonly("contact_count", &fastnorm::CaseResult<double>::contact_count)
-      .def_readonly("iterations", &fastnorm::CaseResult<double>::iterations);
+      .def_readonly("iterations", &fastnorm::CaseResult<double>::iterations)
+      .def("__repr__", [](const fastnorm::CaseResult<double>& stored) {
+        return "CaseResult(normal_force_n=" + number(stored.normal_force) + ", approach_m=" +
+               number(stored.approach) + ", contact_count=" + std::to_string(stored.contact_count) + ")";
+      });
 
   py::class_<Case>(m, "Case",
                    "A normal-contact problem as a .case file stores it (docs/case-format.md). Without "
@@ -470,7 +488,14 @@ void bind_case_files(py::module_& m) {
                                if (!problem.result) return std::nullopt;
                                return map_of<double>(problem.grid, problem.result->pressure);
                              },
-                             "the stored pressures (Pa), shape (my, mx), or None");
+                             "the stored pressures (Pa), shape (my, mx), or None")
+      .def("__repr__", [](const Case& problem) {
+        const bool force = problem.loading.control == fastnorm::Control::force;
+        return "Case('" + problem.name + "', grid=" + std::to_string(problem.grid.mx()) + "x" +
+               std::to_string(problem.grid.my()) +
+               (force ? ", normal_force_n=" + number(problem.loading.normal_force) : std::string(", approach control")) +
+               (problem.result ? ", with result" : "") + ")";
+      });
 
   m.def("read_case", &fastnorm::read_case_file<double>, "path"_a, "Reads a .case file.");
   m.def("write_case", &write_case, "path"_a, "case"_a, "solution"_a = py::none(),
@@ -630,7 +655,8 @@ void bind_wheelset(py::module_& m) {
           [](PyWheelset& model) { model.reset(); },
           "The next evaluate starts cold: no previous patches, contact sets or search.")
       .def_property_readonly("flange_angle_rad", &PyWheelset::flange_angle,
-                             "the steepest angle of the wheel's flange face");
+                             "the steepest angle of the wheel's flange face")
+      .def("__repr__", [](const PyWheelset& model) { return model.description(); });
 }
 
 }  // namespace

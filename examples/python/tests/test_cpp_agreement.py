@@ -64,3 +64,9 @@ def test_a_written_case_reads_back_unchanged(peer_cases, output_dir):
     assert again.normal_force_n == case.normal_force_n
     assert again.result.normal_force_n == solution.normal_force_n
     assert again.material.poisson_ratio_1 == case.material.poisson_ratio_1
+
+
+def test_cases_print_their_key_figures(peer_cases):
+    case = fastnorm.read_case(str(peer_cases / "hertz_sphere_30x30.case"))
+    assert repr(case).startswith("Case('") and "grid=30x30" in repr(case)
+    assert repr(case.result).startswith("CaseResult(normal_force_n=")

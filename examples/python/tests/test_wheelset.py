@@ -95,11 +95,14 @@ def test_evaluate_takes_the_pose_an_equilibrium_returns(model):
 def test_every_result_object_prints_its_key_figures(model):
     result = model.evaluate(lateral_shift_m=3e-3, vertical_m=0.1e-3)
     found = model.equilibrium(load_n=200e3)
-    texts = [repr(result), repr(result.status), repr(result.wheels[1]), repr(result.wheels[1].patches[0]),
-             repr(found), repr(found.pose), repr(result.wheels[1].patches[0].solution)]
+    patch = result.wheels[1].patches[0]
+    texts = [repr(result), repr(result.status), repr(result.wheels[1]), repr(patch), repr(found), repr(found.pose),
+             repr(patch.solution), repr(model), repr(patch.grid), repr(fastnorm.Material(2.1e11, 0.3)),
+             repr(fastnorm.Solver("norm", patch.grid, fastnorm.Material(2.1e11, 0.3)))]
     for text in texts:
         assert " object at 0x" not in text
     assert repr(result).startswith("WheelsetResult(patches=")
     assert "status='ok'" in repr(result)
     assert repr(found).startswith("Equilibrium(status='converged'")
-    assert "normal_force_n=" in repr(result.wheels[1].patches[0])
+    assert "normal_force_n=" in repr(patch)
+    assert repr(model).startswith("WheelsetContact(solver='elliptic'")
