@@ -12,5 +12,7 @@
 #include "fastnorm/wheelrail/contact_search.hpp"
 #include "fastnorm/wheelrail/patch.hpp"
 #include "fastnorm/wheelrail/equilibrium.hpp"
+#include "fastnorm/wheelrail/wheelset_contact_options.hpp"
+#include "fastnorm/wheelrail/wheelset_contact_result.hpp"
 #include "fastnorm/wheelrail/wheelset_contact.hpp"
 #include "fastnorm/wheelrail/setup.hpp"

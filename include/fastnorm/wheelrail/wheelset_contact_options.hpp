@@ -1,0 +1,68 @@
+#pragma once
+/// @file wheelset_contact_options.hpp
+/// Settings of the wheelset contact model of the time loop (docs/wheel-rail.md §9),
+/// fixed for a model's life; the equilibrium's options contain them.
+
+#include <optional>
+
+#include "fastnorm/error.hpp"
+#include "fastnorm/material.hpp"
+#include "fastnorm/solver_spec.hpp"
+#include "fastnorm/wheelrail/contact_search.hpp"
+#include "fastnorm/wheelrail/patch.hpp"
+
+namespace fastnorm::wheelrail {
+
+/// Settings of a WheelsetContact, fixed for its life.
+struct WheelsetContactOptions {
+  /// The patch solver and its settings (NORM by default). With a model of a named solver
+  /// type (WheelsetContact<NormSolver<>>, …) its kind must be that type's.
+  SolverSpec<double> solver;
+  /// Element sizes: element_length and element_width if both are given (m), else the sizes
+  /// that put `elements` across the largest patch at `reference_pose`.
+  PatchGridOptions grid;
+  SearchOptions search;           ///< contact search and patch merging
+  /// Elastic constants of wheel (body 1) and rail (body 2); steel for both by default.
+  Material<double> material = Material<double>::steel();
+  /// Where the element sizes are chosen when not given; by default the rigid two-wheel
+  /// contact at y = 0, yaw = 0 lowered by `reference_approach`.
+  std::optional<WheelsetPose> reference_pose;
+  double reference_approach = 0.1e-3;  ///< m
+  /// Patch grids on a lattice of the element sizes that moves with each patch only by whole
+  /// elements (docs/wheel-rail.md §9): consecutive grids differ by whole elements and the previous contact set
+  /// maps onto the new grid exactly. Off: each grid is centred on its patch's contact
+  /// reference point, as the equilibrium does.
+  bool snap_to_lattice = true;
+  /// Start each NORM or CG solve from the patch's previous contact set (shifted onto the
+  /// new grid); their answers do not depend on it, only their time.
+  bool warm_start = true;
+  /// The same for the reduced solvers, whose answer depends on the path of the active set,
+  /// so that a warm answer may differ from the cold one. Unset: warm for the edge-enriched
+  /// polynomial basis, whose warm answers along the benchmark trajectory were its cold ones
+  /// in half the time; cold for the others, whose warm contact sets were further from
+  /// NORM's than their cold ones at some steps (docs/performance.md §8). Cold, a solve
+  /// follows the cold path and reuses the assemblies of the previous solve where the grid
+  /// is unchanged.
+  std::optional<bool> reduced_warm_start;
+
+  bool stiffness = true;  ///< compute each patch's dFn/dδ (one extra solve with the last factor)
+
+  /// Whether a solve of `solver` starts from the patch's previous contact set.
+  bool starts_warm() const {
+    if (!solver.is_reduced()) return warm_start;
+    return reduced_warm_start.value_or(solver.kind == SolverSpec<double>::Kind::polynomial_edge);
+  }
+
+  /// @throws fastnorm::invalid_argument naming the offending field
+  void validate() const {
+    solver.validate();
+    grid.validate();
+    search.validate();
+    fastnorm::detail::check_positive(reference_approach, "WheelsetContactOptions: reference_approach (m)");
+    FASTNORM_CHECK((grid.element_length > 0) == (grid.element_width > 0),
+                   "WheelsetContactOptions: give both grid.element_length and grid.element_width, or neither");
+    if (reference_pose) check_pose(*reference_pose, "WheelsetContactOptions: reference_pose");
+  }
+};
+
+}  // namespace fastnorm::wheelrail

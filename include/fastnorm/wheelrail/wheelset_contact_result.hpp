@@ -1,0 +1,126 @@
+#pragma once
+/// @file wheelset_contact_result.hpp
+/// What the wheelset contact model of the time loop returns (docs/wheel-rail.md §9):
+/// per patch its frame, grid, pressures, forces and stiffness, per wheel and wheelset the
+/// sums, and the step status.
+
+#include <Eigen/Core>
+#include <array>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "fastnorm/solution.hpp"
+#include "fastnorm/wheelrail/patch.hpp"
+
+namespace fastnorm::wheelrail {
+
+/// How a patch relates to the patches of the same wheel at the previous call.
+enum class PatchHistory {
+  continued,  ///< the continuation of one previous patch (warm start from its contact set)
+  appeared,   ///< no previous patch near it (cold start)
+  merged,     ///< two or more previous patches became this one (started from their sets)
+  split,      ///< one previous patch became this and another (started from its set)
+};
+
+inline const char* to_string(PatchHistory history) {
+  switch (history) {
+    case PatchHistory::continued: return "continued";
+    case PatchHistory::appeared: return "appeared";
+    case PatchHistory::merged: return "merged";
+    case PatchHistory::split: return "split";
+  }
+  return "unknown";
+}
+
+/// One contact patch at the pose of the call. Track frame: x forward, y right, z down (m).
+struct PatchContact {
+  ContactPatch patch{{}, Grid<double>(1, 1, 1, 1), {}};  ///< frame, grid and undeformed distance h (approach 0)
+  Solution<double> solution;    ///< pressures on patch.grid (Pa), contact set, status
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();  ///< the contact reference point (weighted centre on the rail)
+  double profile_y = 0;         ///< the wheel profile coordinate y_w of the reference point, weighted alike (m)
+  Eigen::Vector3d pressure_centre = Eigen::Vector3d::Zero();  ///< centroid of the pressure in the tangent plane
+  double normal_force = 0;      ///< Fn (N)
+  /// The normal force on the wheel, −Fn·n (N; n into the rail, PatchFrame::normal).
+  Eigen::Vector3d force = Eigen::Vector3d::Zero();
+  /// Its moment about the wheelset centre, (pressure_centre − C) × force (N·m).
+  Eigen::Vector3d moment = Eigen::Vector3d::Zero();
+  double contact_angle = 0;     ///< of the normal from the vertical, + leaning to the track centre (rad)
+  double approach = 0;          ///< the rigid interpenetration −min h (m)
+  Eigen::Index contact_elements = 0;
+  double max_pressure = 0;      ///< Pa
+  /// dFn/dδ (N/m): the normal stiffness of the discrete model at the final contact set
+  /// (δ the approach along n); NaN when options.stiffness is off.
+  double stiffness = std::nan("");
+  PatchHistory history = PatchHistory::appeared;
+
+  bool ok() const { return solution.ok(); }
+};
+
+/// Whether a step (an evaluate) gave every patch a usable answer, and if not, the first
+/// patch that failed and why. Default-constructed: not_solved (nothing evaluated yet).
+struct StepStatus {
+  enum class Code {
+    not_solved,    ///< no evaluate has filled it
+    ok,            ///< every patch solved with a usable answer (Solution::ok)
+    patch_failed,  ///< a patch solve did not give a usable answer: `side`, `patch`, `solver_status`
+  };
+  Code code = Code::not_solved;
+  Side side = Side::left;     ///< the wheel of the failed patch
+  int patch = -1;             ///< its index in that wheel's patches (tread first); -1 if none failed
+  Status solver_status = Status::not_solved;  ///< the failed patch's Solution::status
+  /// Empty when ok; else e.g. "right wheel, patch 1 of 2: numerical issue: …".
+  std::string message;
+
+  bool ok() const { return code == Code::ok; }
+};
+
+inline const char* to_string(StepStatus::Code code) {
+  switch (code) {
+    case StepStatus::Code::not_solved: return "not solved";
+    case StepStatus::Code::ok: return "ok";
+    case StepStatus::Code::patch_failed: return "patch failed";
+  }
+  return "unknown";
+}
+
+/// Wall-clock time of the three stages of one wheel's evaluation (s).
+struct StageTimes {
+  double search = 0;    ///< contact search, patch frames and grids
+  double distance = 0;  ///< undeformed distance h on the grids
+  double solve = 0;     ///< normal solves and stiffness
+};
+
+/// One wheel at the pose of the call.
+struct WheelContact {
+  Side side = Side::right;
+  std::vector<PatchContact> patches;  ///< by increasing y_w (tread first, flange last)
+  Eigen::Vector3d force = Eigen::Vector3d::Zero();   ///< Σ patch forces (N)
+  Eigen::Vector3d moment = Eigen::Vector3d::Zero();  ///< Σ patch moments about the wheelset centre (N·m)
+  double normal_force = 0;            ///< Σ Fn (N)
+  int vanished = 0;                   ///< previous patches with no successor (contact lost there)
+  /// A patch's reference point lies on the steepest flank of the flange or beyond it
+  /// (Wheelset::at_flange_climb): the wheel is at flange climb.
+  bool flange_climb = false;
+  StageTimes times;
+  StepStatus status;  ///< this wheel's: ok, or its first failed patch
+
+  bool ok() const { return status.ok(); }
+};
+
+/// Both wheels at one pose.
+struct WheelsetContactResult {
+  WheelsetPose pose;
+  std::array<WheelContact, 2> wheels;                ///< left, right
+  Eigen::Vector3d force = Eigen::Vector3d::Zero();   ///< on the wheelset (N)
+  Eigen::Vector3d moment = Eigen::Vector3d::Zero();  ///< about its centre (N·m)
+  StepStatus status;  ///< ok, or the first failed patch (left wheel first)
+
+  const WheelContact& wheel(Side side) const { return wheels[side == Side::right ? 1 : 0]; }
+  /// Every patch solved with a usable answer.
+  bool ok() const { return status.ok(); }
+  /// A wheel at flange climb.
+  bool flange_climb() const { return wheels[0].flange_climb || wheels[1].flange_climb; }
+};
+
+}  // namespace fastnorm::wheelrail
