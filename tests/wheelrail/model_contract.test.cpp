@@ -196,3 +196,39 @@ TEST_CASE("The step status names the wheel and patch that failed, and why", "[wh
   // The single-wheel mode reports its wheel's status.
   CHECK(starved.evaluate(pose, wr::Side::right).status.side == wr::Side::right);
 }
+
+namespace {
+
+// Along a short trajectory, a trial step evaluated, its history restored and the step
+// evaluated again: bit for bit the answer of a model that never saw the trial.
+template <typename Solver>
+void check_trial_steps(const char* name) {
+  INFO(name);
+  const auto options = coarse(name);
+  wr::WheelsetContact<Solver> model(wr::Track(), wr::Wheelset(), options);
+  wr::WheelsetContact<Solver> untried(wr::Track(), wr::Wheelset(), options);
+  const auto base = pressed_pose();
+  for (int step = 0; step < 6; ++step) {
+    wr::WheelsetPose pose = base;
+    pose.y += 0.4e-3 * step;  // more than an element per step: new boxes and shifted sets
+    pose.yaw += 1e-3 * step;
+    const auto saved = model.history();
+    wr::WheelsetPose trial = pose;  // a rejected trial, far off
+    trial.y += 1.5e-3;
+    trial.z += 0.05e-3;
+    model.evaluate(trial);
+    model.restore(saved);
+    check_same_patches(model.evaluate(pose), untried.evaluate(pose));
+  }
+}
+
+}  // namespace
+
+TEST_CASE("A trial step restored leaves no trace: the step again is bit for bit the untried model's",
+          "[wheelrail][model]") {
+  check_trial_steps<fastnorm::NormSolver<>>("norm");
+  check_trial_steps<fastnorm::CgSolver<>>("cg");
+  check_trial_steps<fastnorm::ReducedSolver<fastnorm::EllipticBasis>>("elliptic");
+  check_trial_steps<fastnorm::ReducedSolver<fastnorm::PolynomialEdgeBasis>>("polynomial-edge:4:1");
+  check_trial_steps<fastnorm::AnySolver<>>("polynomial:4");
+}

@@ -192,6 +192,37 @@ class WheelsetContact {
  private:
   using State = detail::PatchState<Workspace>;
 
+ public:
+  /// What the next evaluate starts from: each patch's frame, lattice box, contact set and
+  /// solver workspace, and each wheel's contact search (docs/wheel-rail.md §9, trial steps).
+  class History {
+    friend class WheelsetContact;
+    std::array<std::vector<State>, 2> states;
+    std::array<GapSampler, 2> samplers;
+  };
+
+  /// A copy of the committed history (taking it allocates), for an integrator that
+  /// evaluates trial poses and may reject them.
+  History history() const {
+    History saved;
+    saved.states = states_;
+    saved.samplers = samplers_;
+    return saved;
+  }
+
+  /// Back to `saved`: the next evaluate gives, bit for bit, what it would have given right
+  /// after history() was taken, whatever was evaluated since. Solvers and their tables built
+  /// since are kept (they do not depend on the history); the last result stays readable.
+  void restore(const History& saved) {
+    for (std::size_t w = 0; w < 2; ++w) {
+      keep_spare_workspaces(states_[w]);
+      states_[w] = saved.states[w];
+    }
+    samplers_ = saved.samplers;
+  }
+
+ private:
+
   void choose_element_sizes() {
     WheelsetPose pose;
     if (options_.reference_pose) {
