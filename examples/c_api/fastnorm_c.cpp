@@ -130,6 +130,12 @@ const wr::PatchContact& patch_of(const fastnorm_wheelset* model, int wheel, int 
   return *patches[static_cast<std::size_t>(patch)];
 }
 
+// options.max_iterations of the C structs: 0 keeps the solver's default.
+void apply_max_iterations(int max_iterations, fastnorm::SolverSpec<double>& spec) {
+  FASTNORM_CHECK(max_iterations >= 0, fastnorm::describe("options.max_iterations must be >= 0", max_iterations));
+  if (max_iterations > 0) spec.set_max_iterations(max_iterations);
+}
+
 void copy3(const Eigen::Vector3d& from, double* to) {
   for (int k = 0; k < 3; ++k) to[k] = from(k);
 }
@@ -180,11 +186,9 @@ int fastnorm_solver_create(const char* name, const fastnorm_grid* grid, const fa
     *solver = nullptr;
     auto spec = fastnorm::SolverSpec<double>::parse(name);
     if (options) {
-      FASTNORM_CHECK(options->max_iterations >= 0,
-                     fastnorm::describe("options.max_iterations must be >= 0", options->max_iterations));
+      apply_max_iterations(options->max_iterations, spec);
       FASTNORM_CHECK(std::isfinite(options->tolerance) && options->tolerance >= 0,
                      fastnorm::describe("options.tolerance must be >= 0", options->tolerance));
-      if (options->max_iterations > 0) spec.active_set.max_iterations = spec.cg.max_iterations = options->max_iterations;
       if (options->tolerance > 0) spec.cg.tolerance = options->tolerance;
     }
     *solver = new fastnorm_solver{fastnorm::AnySolver<double>(spec, grid_of(grid), material_of(material)), {}};
@@ -338,14 +342,8 @@ int fastnorm_wheelset_create(const fastnorm_wheelset_options* options, fastnorm_
     contact.material = material_of(&options->material);
     contact.grid.elements = options->elements;
     contact.stiffness = options->stiffness != 0;
-    FASTNORM_CHECK(options->max_iterations >= 0,
-                   fastnorm::describe("options.max_iterations must be >= 0", options->max_iterations));
-    if (options->max_iterations > 0) {
-      contact.solver.active_set.max_iterations = options->max_iterations;
-      contact.solver.cg.max_iterations = options->max_iterations;
-    }
-    wr::Track track = setup.track();  // first: a bad gauge is named as the gauge
-    *model = new fastnorm_wheelset{wr::WheelsetContact<>(std::move(track), setup.wheelset(), contact), {}, {}, {}};
+    apply_max_iterations(options->max_iterations, contact.solver);
+    *model = new fastnorm_wheelset{wr::WheelsetContact<>(setup.track(), setup.wheelset(), contact), {}, {}, {}};
   });
 }
 
@@ -385,7 +383,7 @@ int fastnorm_wheelset_step_status(const fastnorm_wheelset* model, fastnorm_step_
     require_pointer(status, "status");
     const wr::StepStatus& step = model->step;
     const bool failed = step.code == wr::StepStatus::Code::patch_failed;
-    *status = {static_cast<int>(step.code), failed ? (step.side == wr::Side::right ? 1 : 0) : -1, step.patch,
+    *status = {static_cast<int>(step.code), failed ? static_cast<int>(wr::wheel_index(step.side)) : -1, step.patch,
                static_cast<int>(step.solver_status)};
   });
 }
@@ -447,7 +445,7 @@ int fastnorm_wheelset_equilibrium(fastnorm_wheelset* model, double load, double 
     for (auto& patches : model->patches) patches.clear();
     model->equilibrium = wr::solve_equilibrium(model->model, y, yaw, load);
     const auto& found = *model->equilibrium;
-    for (const auto& patch : found.patches) model->patches[patch.patch.frame.side == wr::Side::right ? 1 : 0].push_back(&patch);
+    for (const auto& patch : found.patches) model->patches[wr::wheel_index(patch.patch.frame.side)].push_back(&patch);
     fastnorm_equilibrium value{};
     value.status = static_cast<int>(found.status);
     value.iterations = found.iterations;

@@ -105,7 +105,7 @@ fastnorm::Loading<double> loading_of(std::optional<double> normal_force) {
 fastnorm::SolverSpec<double> spec_of(const std::string& name, std::optional<int> max_iterations,
                                      std::optional<double> tolerance) {
   auto spec = fastnorm::SolverSpec<double>::parse(name);
-  if (max_iterations) spec.active_set.max_iterations = spec.cg.max_iterations = *max_iterations;
+  if (max_iterations) spec.set_max_iterations(*max_iterations);
   if (tolerance) spec.cg.tolerance = *tolerance;
   spec.validate();
   return spec;
@@ -259,7 +259,7 @@ std::vector<PyWheel> wheels_of(const std::vector<wr::PatchContact>& patches, con
   std::array<Eigen::Vector3d, 2> force{Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};
   std::array<Eigen::Vector3d, 2> moment = force;
   for (const auto& patch : patches) {
-    const std::size_t wheel = patch.patch.frame.side == wr::Side::right ? 1 : 0;
+    const std::size_t wheel = wr::wheel_index(patch.patch.frame.side);
     wheels[wheel].patches.push_back(to_python(patch, wheelset));
     wheels[wheel].normal_force += patch.normal_force;
     wheels[wheel].flange_climb = wheels[wheel].flange_climb || wheels[wheel].patches.back().flange_climb;
@@ -276,8 +276,8 @@ std::vector<PyWheel> wheels_of(const std::vector<wr::PatchContact>& patches, con
 // The wheelset contact model of the time loop and the equilibrium on the same set-up.
 class PyWheelset {
  public:
-  PyWheelset(wr::Track track, const wr::WheelsetOnTrack& setup, const wr::WheelsetContactOptions& options)
-      : model_(std::move(track), setup.wheelset(), options) {}
+  PyWheelset(const wr::WheelsetOnTrack& setup, const wr::WheelsetContactOptions& options)
+      : model_(setup.track(), setup.wheelset(), options) {}
 
   PyWheelsetResult evaluate(const wr::WheelsetPose& pose) {
     std::optional<wr::WheelsetContactResult> result;
@@ -362,8 +362,7 @@ std::unique_ptr<PyWheelset> make_wheelset(const std::string& solver, Eigen::Inde
   options.grid.elements = elements;
   options.material = material;
   options.stiffness = stiffness;
-  wr::Track track = setup.track();  // first: a bad gauge is named as the gauge
-  return std::make_unique<PyWheelset>(std::move(track), setup, options);
+  return std::make_unique<PyWheelset>(setup, options);
 }
 
 std::string version() {

@@ -140,8 +140,7 @@ Setup setup_of(const Arguments& a) {
   setup.nominal_radius = a.radius_mm * 1e-3;
   setup.gauge = a.gauge_mm * 1e-3;
   setup.cant = a.cant;
-  wr::Track track = setup.track();  // first: a bad gauge is named as the gauge
-  return {std::move(track), setup.wheelset()};
+  return {setup.track(), setup.wheelset()};
 }
 
 wr::PatchGridOptions grid_options(const Arguments& a) {

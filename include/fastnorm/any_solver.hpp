@@ -172,7 +172,7 @@ class AnySolver : public detail::SolverBase<AnySolver<Scalar>, AnyWorkspace<Scal
 // below, a program linked with fastnorm::precompiled does not compile every solver again.
 template <typename Scalar>
 AnySolver<Scalar>::AnySolver(const SolverSpec<Scalar>& spec, const Grid<Scalar>& grid, const Material<Scalar>& material)
-  : spec_(spec) {
+    : spec_(spec) {
   spec_.validate();
   using Kind = typename SolverSpec<Scalar>::Kind;
   switch (spec_.kind) {

@@ -88,6 +88,10 @@ struct SolverSpec {
     return "unknown";
   }
 
+  /// The iteration cap of whichever kind the spec names: active-set solves (NORM and the
+  /// reduced kinds) or CG iterations.
+  void set_max_iterations(int count) { active_set.max_iterations = cg.max_iterations = count; }
+
   /// One of the reduced strip-basis kinds.
   bool is_reduced() const { return kind != Kind::norm && kind != Kind::cg; }
 

@@ -307,7 +307,8 @@ inline GapSample smallest_gap(const Track& track, const Wheelset& wheelset, Side
 /// from call to call, also when the patch count drops, and a time loop's search stops
 /// allocating.
 inline std::size_t contact_regions(const Track& track, const Wheelset& wheelset, Side side, const WheelsetPose& pose,
-                            const SearchOptions& options, GapSampler& sampler, std::vector<ContactRegion>& regions) {
+                                   const SearchOptions& options, GapSampler& sampler,
+                                   std::vector<ContactRegion>& regions) {
   const std::vector<GapSample>& samples = sampler.sample(track, wheelset, side, pose, options);
   std::size_t count = 0;  // regions in use; the others keep their storage until the end
   for (std::size_t k = 0; k < samples.size(); ++k) {

@@ -451,6 +451,13 @@ inline void check_load(double load, const char* load_name) {
                                             load));
 }
 
+/// The arguments of the two-wheel equilibrium, checked by name.
+inline void check_two_wheel_input(double y, double yaw, double load, const EquilibriumOptions& options) {
+  check_pose({y, 0, 0, yaw}, "equilibrium");
+  check_load(load, "load");
+  options.validate();
+}
+
 }  // namespace detail
 
 /// The wheelset at rest under `load` (N, on the wheelset centre, downward) at lateral shift
@@ -464,9 +471,7 @@ inline void check_load(double load, const char* load_name) {
 template <typename Solver = AnySolver<double>>
 Equilibrium solve_equilibrium(const Track& track, const Wheelset& wheelset, double y, double yaw, double load,
                               const EquilibriumOptions& options = {}) {
-  check_pose({y, 0, 0, yaw}, "equilibrium");
-  detail::check_load(load, "load");
-  options.validate();
+  detail::check_two_wheel_input(y, yaw, load, options);
   check_spec_for<Solver>(options.contact.solver, "EquilibriumOptions: contact.solver");
   const WheelsetPose start = detail::equilibrium_start(track, wheelset, y, yaw, load, options, options.contact.search);
   return detail::EquilibriumSearch<Solver>(track, wheelset, {Side::left, Side::right}, load, options).run(start);
@@ -483,9 +488,7 @@ Equilibrium solve_equilibrium(const Track& track, const Wheelset& wheelset, doub
 template <typename Solver>
 Equilibrium solve_equilibrium(WheelsetContact<Solver>& model, double y, double yaw, double load,
                               const EquilibriumOptions& options = {}) {
-  check_pose({y, 0, 0, yaw}, "equilibrium");
-  detail::check_load(load, "load");
-  options.validate();
+  detail::check_two_wheel_input(y, yaw, load, options);
   FASTNORM_CHECK(model.options().stiffness,
                  "equilibrium: the model's options.stiffness must be on (the Newton Jacobian needs it)");
   const WheelsetPose start = detail::equilibrium_start(model.track(), model.wheelset(), y, yaw, load, options,

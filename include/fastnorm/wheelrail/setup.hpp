@@ -7,6 +7,7 @@
 
 #include <string>
 
+#include "fastnorm/error.hpp"
 #include "fastnorm/wheelrail/profile_curve.hpp"
 #include "fastnorm/wheelrail/profile_file.hpp"
 #include "fastnorm/wheelrail/s1002.hpp"
@@ -34,7 +35,6 @@ struct WheelsetOnTrack {
   double gauge = TrackLayout().gauge;
   double cant = TrackLayout().cant;
 
-  /// Build it before the wheelset: a bad gauge is then named as the gauge.
   /// @throws fastnorm::invalid_argument for a bad profile file, gauge or cant
   Track track() const {
     TrackLayout layout;
@@ -43,8 +43,10 @@ struct WheelsetOnTrack {
     return Track(profile_from_file_or(rail_profile, uic60_rail()), layout);
   }
 
-  /// @throws fastnorm::invalid_argument for a bad profile file, radius or gauge
+  /// @throws fastnorm::invalid_argument for a bad profile file, radius or gauge (named as
+  ///         the gauge, which the taping lines are derived from)
   Wheelset wheelset() const {
+    check_positive(gauge, "WheelsetOnTrack: gauge");
     WheelsetLayout layout;
     layout.nominal_radius = nominal_radius;
     layout.taping_line_half_distance = (gauge + taping_lines_over_gauge) / 2;

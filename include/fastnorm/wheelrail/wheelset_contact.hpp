@@ -125,6 +125,8 @@ inline ElementSizes element_sizes_at(const Track& track, const Wheelset& wheelse
 /// (solver_from_spec.hpp) will do.
 template <typename Solver = AnySolver<double>>
 class WheelsetContact {
+  using State = detail::PatchState<typename Solver::Workspace>;
+
  public:
   using Workspace = typename Solver::Workspace;
 
@@ -160,7 +162,7 @@ class WheelsetContact {
     result_.moment.setZero();
     result_.status = StepStatus{StepStatus::Code::ok, Side::left, -1, Status::not_solved, {}};
     for (Side side : {Side::left, Side::right}) {
-      WheelContact& wheel = result_.wheels[side == Side::right ? 1 : 0];
+      WheelContact& wheel = result_.wheels[wheel_index(side)];
       evaluate_wheel(side, pose, wheel);
       result_.force += wheel.force;
       result_.moment += wheel.moment;
@@ -175,7 +177,7 @@ class WheelsetContact {
   /// @throws fastnorm::invalid_argument for a pose that is not finite or outside PoseLimits
   const WheelContact& evaluate(const WheelsetPose& pose, Side side) {
     check_pose(pose, "WheelsetContact::evaluate");
-    WheelContact& wheel = result_.wheels[side == Side::right ? 1 : 0];
+    WheelContact& wheel = result_.wheels[wheel_index(side)];
     evaluate_wheel(side, pose, wheel);
     return wheel;
   }
@@ -189,10 +191,6 @@ class WheelsetContact {
     }
   }
 
- private:
-  using State = detail::PatchState<Workspace>;
-
- public:
   /// What the next evaluate starts from: each patch's frame, lattice box, contact set and
   /// solver workspace, and each wheel's contact search (docs/wheel-rail.md §9, trial steps).
   class History {
@@ -222,7 +220,6 @@ class WheelsetContact {
   }
 
  private:
-
   void choose_element_sizes() {
     WheelsetPose pose;
     if (options_.reference_pose) {
@@ -244,7 +241,7 @@ class WheelsetContact {
     auto clock = std::chrono::steady_clock::now();
     wheel.side = side;
     const std::vector<ContactRegion>& regions = regions_;
-    const std::size_t w = side == Side::right ? 1 : 0;
+    const std::size_t w = wheel_index(side);
     const std::size_t count = contact_regions(track_, wheelset_, side, pose, options_.search, samplers_[w], regions_);
     std::vector<State>& previous = states_[w];
     std::vector<State>& next = next_states_[w];  // storage of the call before the last
@@ -458,31 +455,6 @@ class WheelsetContact {
     return solvers_.size() - 1;
   }
 
-  /// Gives the result patch `out` an h and a solution of `length` elements: its own, if they
-  /// have that length; else spares of that length, its own going to the spares of theirs.
-  /// Eigen's vectors keep no capacity, so a result slot that meets another grid size would
-  /// otherwise allocate whenever patches appear, merge or vanish.
-  void fit_storage(PatchContact& out, Eigen::Index length) {
-    Eigen::VectorXd& distance = out.patch.undeformed_distance;
-    if (distance.size() != length) {
-      if (distance.size() > 0) spares_of(distance.size()).distances.push_back(std::move(distance));
-      take_spare(spares_of(length).distances, distance);
-    }
-    if (out.solution.pressure.size() != length) {
-      if (out.solution.pressure.size() > 0) {
-        spares_of(out.solution.pressure.size()).solutions.push_back(std::move(out.solution));
-      }
-      take_spare(spares_of(length).solutions, out.solution);
-    }
-  }
-
-  template <typename T>
-  static void take_spare(std::vector<T>& spares, T& into) {
-    if (spares.empty()) return;  // none yet: the vector is sized (once) where it is filled
-    into = std::move(spares.back());
-    spares.pop_back();
-  }
-
   /// Vectors of one length that no result patch holds at the moment.
   struct SpareStorage {
     Eigen::Index length = 0;
@@ -496,6 +468,27 @@ class WheelsetContact {
     }
     spare_storage_.push_back({length, {}, {}});
     return spare_storage_.back();
+  }
+
+  /// Gives the result patch `out` an h and a solution of `length` elements: its own, if they
+  /// have that length; else spares of that length, its own going to the spares of theirs.
+  /// Eigen's vectors keep no capacity, so a result slot that meets another grid size would
+  /// otherwise allocate whenever patches appear, merge or vanish.
+  void fit_storage(PatchContact& out, Eigen::Index length) {
+    exchange(out.patch.undeformed_distance, out.patch.undeformed_distance.size(), length, &SpareStorage::distances);
+    exchange(out.solution, out.solution.pressure.size(), length, &SpareStorage::solutions);
+  }
+
+  /// `held`, of `held_length` elements, for one of `length` from the spares (if any: else it
+  /// is sized, once, where it is filled).
+  template <typename T>
+  void exchange(T& held, Eigen::Index held_length, Eigen::Index length, std::vector<T> SpareStorage::*pool) {
+    if (held_length == length) return;
+    if (held_length > 0) (spares_of(held_length).*pool).push_back(std::move(held));
+    auto& spares = spares_of(length).*pool;
+    if (spares.empty()) return;
+    held = std::move(spares.back());
+    spares.pop_back();
   }
 
   /// A spare workspace of solver `s`, or a new one.

@@ -7,6 +7,7 @@
 #include <Eigen/Core>
 #include <array>
 #include <cmath>
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -14,6 +15,10 @@
 #include "fastnorm/wheelrail/patch.hpp"
 
 namespace fastnorm::wheelrail {
+
+/// A wheel's place in the results, as in WheelsetContactResult::wheels and the bindings:
+/// 0 the left wheel, 1 the right.
+inline std::size_t wheel_index(Side side) { return side == Side::right ? 1 : 0; }
 
 /// How a patch relates to the patches of the same wheel at the previous call.
 enum class PatchHistory {
@@ -116,7 +121,7 @@ struct WheelsetContactResult {
   Eigen::Vector3d moment = Eigen::Vector3d::Zero();  ///< about its centre (N·m)
   StepStatus status;  ///< ok, or the first failed patch (left wheel first)
 
-  const WheelContact& wheel(Side side) const { return wheels[side == Side::right ? 1 : 0]; }
+  const WheelContact& wheel(Side side) const { return wheels[wheel_index(side)]; }
   /// Every patch solved with a usable answer.
   bool ok() const { return status.ok(); }
   /// A wheel at flange climb.
