@@ -1,11 +1,11 @@
 #pragma once
 /// @file patch.hpp
-/// A contact patch: its reference point and tangent plane, the grid of the potential contact
-/// area, and the exact undeformed distance h(x, s) on it (docs/wheel-rail.md §4).
+/// A contact patch: its reference point and tangent plane and the grid of the potential
+/// contact area (docs/wheel-rail.md §4); the undeformed distance on it is in
+/// undeformed_distance.hpp.
 
 #include <Eigen/Core>
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <optional>
 #include <string>
@@ -39,14 +39,6 @@ struct PatchGridOptions {
   }
 };
 
-/// Where undeformed_distance looks for the wheel surface along the normal line through a
-/// rail point (m, + into the rail): docs/wheel-rail.md §4.
-struct NormalSearch {
-  static constexpr double below = -0.020;  ///< farthest out of the rail
-  static constexpr double above = 0.005;   ///< farthest into it
-  static constexpr double tolerance = 1e-13;
-};
-
 /// Where and how a patch lies: reference point on the rail, inclination, grid.
 struct PatchFrame {
   Side side = Side::right;
@@ -68,101 +60,6 @@ struct ContactPatch {
   Grid<double> grid;
   Eigen::VectorXd undeformed_distance;
 };
-
-/// Gap value where a grid point has no wheel or rail surface along its normal (m).
-inline constexpr double no_surface_gap = 1.0;
-
-/// Along a row, the wheel's root is extrapolated from the previous elements' roots and
-/// accepted after one Newton step that moves it by at most this much (m). Newton's error
-/// after that step is about |G''/2G'|·step², and |G''/2G'| stays below about 100 /m for the
-/// profiles' curvatures: at most 4e-12 m (docs/wheel-rail.md §4, tested against bisection).
-inline constexpr double one_step_acceptance = 2e-7;
-
-/// The exact undeformed distance h = n_rail − n_wheel at every element centre of `grid`
-/// (docs/wheel-rail.md §4, item 6): the rail along the normal line through
-/// q = P_ref + x e_x + s t_s by a 2-D intersection, the wheel by solving
-/// √(x_w² + z_w²) = ρ(y_w) in wheelset coordinates. `h` is resized to the grid.
-inline void undeformed_distance(const Track& track, const Wheelset& wheelset, const WheelsetPose& pose,
-                                const PatchFrame& frame, const Grid<double>& grid, Eigen::VectorXd& h) {
-  check_pose(pose, "undeformed_distance");
-  FASTNORM_CHECK(frame.reference.allFinite() && std::isfinite(frame.inclination),
-                 "undeformed_distance: the patch frame's reference point and inclination must be finite");
-  const Eigen::Vector3d lateral = frame.lateral_axis(), normal = frame.normal();
-  const Eigen::Matrix3d rotation = Wheelset::rotation(pose);
-  const Eigen::Vector3d centre = wheelset.centre(pose);
-  const Eigen::Vector3d normal_in_wheelset = rotation.transpose() * normal;
-  const Eigen::Vector3d step_in_wheelset = grid.dx() * rotation.row(0).transpose();  // R^T e_x dx
-  h.resize(grid.size());
-  for (Eigen::Index j = 0; j < grid.my(); ++j) {
-    const Eigen::Vector3d row_point = frame.reference + grid.y(j) * lateral;
-    const auto rail = track.distance_to_rail(frame.side, row_point.y(), row_point.z(), normal.y(), normal.z());
-    Eigen::Vector3d offset = row_point - centre;  // of the row's first element, track frame
-    offset.x() += grid.x(0);
-    const Eigen::Vector3d row_start = rotation.transpose() * offset;
-    std::array<double, 3> roots{};  // the last roots of this row, newest first
-    int known = 0;                  // how many of them are the previous elements'
-    for (Eigen::Index i = 0; i < grid.mx(); ++i) {
-      const Eigen::Vector3d from_centre = row_start + static_cast<double>(i) * step_in_wheelset;
-      // G(t) = √(x_w² + z_w²) − ρ(y_w(t)): negative inside the wheel, rising along n.
-      bool off_profile = false;
-      auto radial_excess = [&](double t) {
-        const Eigen::Vector3d p = from_centre + t * normal_in_wheelset;
-        const double distance = std::sqrt(p.x() * p.x() + p.z() * p.z());  // metres: no overflow
-        const auto profile_y = wheelset.profile_coordinate(frame.side, p.y());
-        if (!profile_y) {
-          off_profile = true;
-          return ProfileValue<double>{0, 1};
-        }
-        const auto rho = wheelset.radius(frame.side, *profile_y);
-        return ProfileValue<double>{
-            distance - rho.value,
-            (p.x() * normal_in_wheelset.x() + p.z() * normal_in_wheelset.z()) / distance - rho.slope * normal_in_wheelset.y()};
-      };
-      const double low = NormalSearch::below, high = NormalSearch::above;
-      auto accept = [&](double root) {
-        roots = {root, roots[0], roots[1]};
-        known = std::min(known + 1, 3);
-        h(grid.index(i, j)) = *rail - root;
-      };
-      // Fast path: the root extrapolated from the previous elements' (the surface moves
-      // smoothly along a row), one Newton step, more only if that step is not small.
-      if (rail && known > 0) {
-        const double guess = known == 3 ? 3 * roots[0] - 3 * roots[1] + roots[2]
-                             : known == 2 ? 2 * roots[0] - roots[1]
-                                          : roots[0];
-        const auto root =
-            detail::newton_root(radial_excess, guess, low, high, NormalSearch::tolerance, one_step_acceptance);
-        if (root && !off_profile) {
-          accept(*root);
-          continue;
-        }
-        off_profile = false;
-      }
-      const double at_low = radial_excess(low).value, at_high = radial_excess(high).value;
-      if (!rail || off_profile || (at_low < 0) == (at_high < 0)) {
-        h(grid.index(i, j)) = no_surface_gap;
-        known = 0;
-        continue;
-      }
-      const double wheel = detail::bracketed_root(radial_excess, low, high, known > 0 ? roots[0] : *rail,
-                                                  NormalSearch::tolerance);
-      if (off_profile) {
-        h(grid.index(i, j)) = no_surface_gap;
-        known = 0;
-        continue;
-      }
-      accept(wheel);
-    }
-  }
-}
-
-/// The same, returned.
-inline Eigen::VectorXd undeformed_distance(const Track& track, const Wheelset& wheelset, const WheelsetPose& pose,
-                                           const PatchFrame& frame, const Grid<double>& grid) {
-  Eigen::VectorXd h;
-  undeformed_distance(track, wheelset, pose, frame, grid, h);
-  return h;
-}
 
 /// The frame of a region: its weighted centre projected to the rail, weighted inclination.
 inline PatchFrame patch_frame(const Track& track, const ContactRegion& region) {

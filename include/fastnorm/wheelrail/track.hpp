@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <optional>
 #include <utility>
 
@@ -97,6 +98,16 @@ class Track {
   /// Distance t (m) along the unit direction (dir_y, dir_z) from (y, z) to the rail surface on
   /// `side` (a 2-D intersection: the rail is prismatic); empty if the line misses the profile.
   std::optional<double> distance_to_rail(Side side, double y, double z, double dir_y, double dir_z) const {
+    double profile_y = std::numeric_limits<double>::quiet_NaN();
+    return distance_to_rail(side, y, z, dir_y, dir_z, profile_y);
+  }
+
+  /// The same, continuing from a nearby line: `profile_y` holds y_r where that line met the
+  /// right rail's profile (NaN if unknown) and receives this one's. From a good guess one
+  /// Newton step of at most 0.2 µm is accepted (its error ≈ |G''/2G'|·step², below 1e-11 m
+  /// for the head's curvatures), as along the rows of a patch (docs/wheel-rail.md §4).
+  std::optional<double> distance_to_rail(Side side, double y, double z, double dir_y, double dir_z,
+                                         double& profile_y) const {
     const double sign = side_sign(side);
     y *= sign;
     dir_y *= sign;
@@ -106,11 +117,17 @@ class Track {
       const double dy_dyr = cos_ + sin_ * p.depth_slope, dz_dyr = -sin_ + cos_ * p.depth_slope;
       return ProfileValue<double>{(p.y - y) * dir_z - (p.z - z) * dir_y, dy_dyr * dir_z - dz_dyr * dir_y};
     };
-    const double low = rail_.y_min, high = rail_.y_max, at_low = crossing(low).value;
-    if ((at_low < 0) == (crossing(high).value < 0)) return std::nullopt;
-    const auto guess = right_profile_coordinate(y);
-    const double y_r = detail::bracketed_root(crossing, low, at_low, high, guess ? *guess : (low + high) / 2, 1e-13);
-    const auto p = right_rail(y_r);
+    const double low = rail_.y_min, high = rail_.y_max;
+    std::optional<double> y_r;
+    if (std::isfinite(profile_y)) y_r = detail::newton_root(crossing, profile_y, low, high, 1e-13, 2e-7);
+    if (!y_r) {
+      const double at_low = crossing(low).value;
+      if ((at_low < 0) == (crossing(high).value < 0)) return std::nullopt;
+      const auto guess = right_profile_coordinate(y);
+      y_r = detail::bracketed_root(crossing, low, at_low, high, guess ? *guess : (low + high) / 2, 1e-13);
+    }
+    profile_y = *y_r;
+    const auto p = right_rail(*y_r);
     return (p.y - y) * dir_y + (p.z - z) * dir_z;
   }
 

@@ -24,6 +24,7 @@
 #include "fastnorm/solver_spec.hpp"
 #include "fastnorm/wheelrail/contact_search.hpp"
 #include "fastnorm/wheelrail/patch.hpp"
+#include "fastnorm/wheelrail/undeformed_distance.hpp"
 #include "fastnorm/wheelrail/wheelset_contact_options.hpp"
 #include "fastnorm/wheelrail/wheelset_contact_result.hpp"
 
@@ -262,7 +263,7 @@ class WheelsetContact {
       patch.frame = next[k].frame;
       patch.grid = next[k].grid;
       fit_storage(wheel.patches[k], patch.grid.size());
-      undeformed_distance(track_, wheelset_, pose, patch.frame, patch.grid, patch.undeformed_distance);
+      undeformed_distance(track_, wheelset_, pose, patch.frame, patch.grid, options_.distance, patch.undeformed_distance);
     }
     wheel.times.distance = detail::seconds_since(clock);
 

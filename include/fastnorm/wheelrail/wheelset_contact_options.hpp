@@ -10,6 +10,7 @@
 #include "fastnorm/solver_spec.hpp"
 #include "fastnorm/wheelrail/contact_search.hpp"
 #include "fastnorm/wheelrail/patch.hpp"
+#include "fastnorm/wheelrail/undeformed_distance.hpp"
 
 namespace fastnorm::wheelrail {
 
@@ -22,6 +23,10 @@ struct WheelsetContactOptions {
   /// that put `elements` across the largest patch at `reference_pose`.
   PatchGridOptions grid;
   SearchOptions search;           ///< contact search and patch merging
+  /// How exactly h is computed on the patches: by default interpolated along rows between
+  /// exact nodes within 0.1 nm (docs/wheel-rail.md §4, item 7); `distance.tolerance = 0`:
+  /// every element exactly.
+  DistanceAccuracy distance;
   /// Elastic constants of wheel (body 1) and rail (body 2); steel for both by default.
   Material<double> material = Material<double>::steel();
   /// Where the element sizes are chosen when not given; by default the rigid two-wheel
@@ -58,6 +63,7 @@ struct WheelsetContactOptions {
     solver.validate();
     grid.validate();
     search.validate();
+    distance.validate();
     fastnorm::detail::check_positive(reference_approach, "WheelsetContactOptions: reference_approach (m)");
     FASTNORM_CHECK((grid.element_length > 0) == (grid.element_width > 0),
                    "WheelsetContactOptions: give both grid.element_length and grid.element_width, or neither");
