@@ -21,6 +21,17 @@
 // checked patches whose warm contact set differs from NORM's in more elements than the cold
 // one's, max_set_further = by how many at most.
 //
+// Then, for every reduced solver named (NORM and CG take milliseconds a wheel, too slow for
+// a vehicle at every step), a vehicle: four wheelsets (eight wheels) on the same trajectory,
+// each a quarter period (250 steps) ahead of the one before, every step all four evaluated
+// one after the other on one thread, and spread over two threads (OpenMP, one wheelset per
+// thread at a time; built without it, the line says threads=unavailable). The two vehicles
+// are stepped alternately, so that both see the same machine:
+//
+//   vehicle solver=<name> wheels=8 threads=<n> step_us=<median> step_p99_us=<t> failed_steps=<n>
+//
+// step_us is the wall time of a whole vehicle step, geometry included.
+//
 // Times are medians per wheel per step (p99 of the total); errors and contact-set
 // differences against NORM on the same h at every 20th step (NORM runs first, on the same
 // grids: the grids depend on the geometry only); roughness = the largest
@@ -34,6 +45,8 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <chrono>
+#include <memory>
 #include <optional>
 #include <string>
 #include <utility>
@@ -191,8 +204,64 @@ inline void print_warm_vs_cold(const std::string& name, const TrajectoryRun& war
   std::fflush(stdout);
 }
 
+/// The vehicle lines of `solver` (see the top of this file): four wheelsets on `poses`, each
+/// `shift` steps ahead of the one before (`poses` holds steps + 3·shift), on one and on two
+/// threads, stepped alternately.
+inline void bench_vehicle(const wr::Track& track, const wr::Wheelset& wheelset, const std::vector<wr::WheelsetPose>& poses,
+                          int steps, int shift, const std::string& solver) {
+  constexpr int wheelsets = 4;
+  const auto options = TrajectorySolver::parse(solver).options();
+  struct Vehicle {
+    int threads;
+    std::vector<std::unique_ptr<wr::WheelsetContact<>>> wheelsets;
+    std::vector<double> step_seconds;
+    long failed_steps = 0;
+  };
+  std::vector<Vehicle> vehicles;
+  for (const int threads : {1, 2}) {
+    Vehicle vehicle{threads, {}, {}, 0};
+    for (int k = 0; k < wheelsets; ++k) {
+      vehicle.wheelsets.push_back(std::make_unique<wr::WheelsetContact<>>(track, wheelset, options));
+    }
+    vehicles.push_back(std::move(vehicle));
+  }
+  for (int step = 0; step < steps; ++step) {
+    for (auto& vehicle : vehicles) {
+      int failed = 0;
+      const auto start = std::chrono::steady_clock::now();
+#if defined(_OPENMP)
+#pragma omp parallel for num_threads(vehicle.threads) schedule(static) reduction(+ : failed)
+#endif
+      for (int k = 0; k < wheelsets; ++k) {
+        const auto pose = poses[static_cast<std::size_t>(step + k * shift)];
+        failed += vehicle.wheelsets[static_cast<std::size_t>(k)]->evaluate(pose).ok() ? 0 : 1;
+      }
+      vehicle.step_seconds.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+      vehicle.failed_steps += failed > 0 ? 1 : 0;
+    }
+  }
+  for (const auto& vehicle : vehicles) {
+#if defined(_OPENMP)
+    const std::string threads = std::to_string(vehicle.threads);
+#else
+    const std::string threads = vehicle.threads == 1 ? "1" : "unavailable";
+    if (vehicle.threads != 1) continue;
+#endif
+    std::printf("vehicle solver=%s wheels=%d threads=%s step_us=%.1f step_p99_us=%.1f failed_steps=%ld\n",
+                TrajectorySolver::parse(solver).label().c_str(), 2 * wheelsets, threads.c_str(),
+                1e6 * quantile(vehicle.step_seconds, 0.5), 1e6 * quantile(vehicle.step_seconds, 0.99),
+                vehicle.failed_steps);
+  }
+#if !defined(_OPENMP)
+  std::printf("vehicle solver=%s wheels=%d threads=unavailable (built without OpenMP)\n",
+              TrajectorySolver::parse(solver).label().c_str(), 2 * wheelsets);
+#endif
+  std::fflush(stdout);
+}
+
 /// Runs NORM first (the reference), then every solver of `solvers`, and prints their lines;
-/// then the warm-versus-cold comparison of every reduced solver that ran both ways.
+/// then the warm-versus-cold comparison of every reduced solver that ran both ways, and the
+/// vehicle lines of every reduced solver.
 inline void bench_trajectory(const std::vector<std::string>& solvers, int steps) {
   const wr::Track track;
   const wr::Wheelset wheelset;
@@ -228,6 +297,11 @@ inline void bench_trajectory(const std::vector<std::string>& solvers, int steps)
         break;
       }
     }
+  }
+  const int quarter_period = 250;  // steps: a quarter of the 1 Hz motion at 1 kHz
+  const auto vehicle_poses = trajectory_poses(track, wheelset, steps + 3 * quarter_period);
+  for (const auto& name : solvers) {
+    if (TrajectorySolver::parse(name).spec.is_reduced()) bench_vehicle(track, wheelset, vehicle_poses, steps, quarter_period, name);
   }
 }
 
