@@ -217,6 +217,11 @@ static void wheelset_equilibrium_and_time_step(void) {
   expect_error(fastnorm_wheelset_patch(model, 2, 0, &unused), "wheel");
   fastnorm_wheelset_destroy(model);
 
+  /* h's accuracy is checked by name. */
+  options.distance_tolerance = -1;
+  expect_error(fastnorm_wheelset_create(&options, &model), "tolerance");
+  options.distance_tolerance = 1e-10;
+
   /* A failed patch solve is a status: one active-set iteration cannot reach NORM's set. */
   options.solver = "norm";
   options.max_iterations = 1;

@@ -323,6 +323,7 @@ void fastnorm_wheelset_options_default(fastnorm_wheelset_options* options) {
   options->material = {steel.young_modulus(1), steel.poisson_ratio(1), steel.young_modulus(2), steel.poisson_ratio(2)};
   options->elements = static_cast<int>(wr::PatchGridOptions().elements);
   options->stiffness = 1;
+  options->distance_tolerance = wr::DistanceAccuracy().tolerance;
 }
 
 int fastnorm_wheelset_create(const fastnorm_wheelset_options* options, fastnorm_wheelset** model) {
@@ -343,6 +344,7 @@ int fastnorm_wheelset_create(const fastnorm_wheelset_options* options, fastnorm_
     contact.grid.elements = options->elements;
     contact.stiffness = options->stiffness != 0;
     apply_max_iterations(options->max_iterations, contact.solver);
+    contact.distance.tolerance = options->distance_tolerance;
     *model = new fastnorm_wheelset{wr::WheelsetContact<>(setup.track(), setup.wheelset(), contact), {}, {}, {}};
   });
 }

@@ -48,6 +48,7 @@ module fastnorm_c
     real(c_double) :: nominal_radius, gauge, cant
     type(fastnorm_material) :: material
     integer(c_int) :: elements, stiffness, max_iterations
+    real(c_double) :: distance_tolerance
   end type
 
   type, bind(c) :: fastnorm_pose

@@ -136,10 +136,13 @@ typedef struct fastnorm_wheelset_options {
   int elements;               /* elements across the largest patch, in [4, 2000] */
   int stiffness;              /* 1: each patch's dFn/d(approach) as well; 0: not */
   int max_iterations;         /* of each patch solve, as in fastnorm_solver_options; 0: the default */
+  double distance_tolerance;  /* h interpolated along rows within this (m, default 1e-10, >= 0);
+                                 0: exact at every element (docs/wheel-rail.md §4, item 7) */
 } fastnorm_wheelset_options;
 
 /* Fills the defaults: "norm", S1002 on UIC60, radius 0.45 m, gauge 1.435 m, cant 1/40,
- * steel (E 210 GPa, nu 0.3) for both bodies, 60 elements, stiffness on. Change fields after. */
+ * steel (E 210 GPa, nu 0.3) for both bodies, 60 elements, stiffness on, h within 1e-10 m.
+ * Change fields after. */
 FASTNORM_C_API void fastnorm_wheelset_options_default(fastnorm_wheelset_options* options);
 
 /* The wheelset's position on the track (m, rad): lateral shift y, vertical z (down),

@@ -350,7 +350,7 @@ std::unique_ptr<PyWheelset> make_wheelset(const std::string& solver, Eigen::Inde
                                           std::optional<std::string> wheel_profile,
                                           std::optional<std::string> rail_profile, double nominal_radius,
                                           double gauge, double cant, const Material& material, bool stiffness,
-                                          std::optional<int> max_iterations) {
+                                          std::optional<int> max_iterations, double distance_tolerance) {
   wr::WheelsetOnTrack setup;
   setup.wheel_profile = wheel_profile.value_or("");
   setup.rail_profile = rail_profile.value_or("");
@@ -362,6 +362,7 @@ std::unique_ptr<PyWheelset> make_wheelset(const std::string& solver, Eigen::Inde
   options.grid.elements = elements;
   options.material = material;
   options.stiffness = stiffness;
+  options.distance.tolerance = distance_tolerance;
   return std::make_unique<PyWheelset>(setup, options);
 }
 
@@ -626,12 +627,13 @@ void bind_wheelset(py::module_& m) {
   py::class_<PyWheelset>(m, "WheelsetContact",
                          "The contact model of one wheelset on its track (docs/wheel-rail.md §9), kept between "
                          "calls. Profiles: files (SIMPACK .prw/.prr or 'y z' in mm), None for S1002 and UIC60. "
-                         "elements: across the largest patch. Calls on one model run one at a time.")
+                         "elements: across the largest patch. distance_tolerance_m: h interpolated along rows within it "
+                         "(0: exact at every element). Calls on one model run one at a time.")
       .def(py::init(&make_wheelset), py::kw_only(), "solver"_a = "norm", "elements"_a = 60,
            "wheel_profile"_a = py::none(), "rail_profile"_a = py::none(),
            "nominal_radius_m"_a = wr::WheelsetLayout().nominal_radius, "gauge_m"_a = wr::TrackLayout().gauge,
            "cant_rad"_a = wr::TrackLayout().cant, "material"_a = Material::steel(), "stiffness"_a = true,
-           "max_iterations"_a = py::none())
+           "max_iterations"_a = py::none(), "distance_tolerance_m"_a = wr::DistanceAccuracy().tolerance)
       .def(
           "evaluate",
           [](PyWheelset& model, double y, double z, double roll, double yaw) {

@@ -40,6 +40,7 @@ def sphere_gap(grid, approach_m=1e-5, radius_m=0.005):
         (lambda: fastnorm.write_case("/nonexistent/x.case", fastnorm.Case("c", GRID, STEEL, sphere_gap(GRID))),
          "path"),
         (lambda: fastnorm.WheelsetContact(elements=2), "elements"),
+        (lambda: fastnorm.WheelsetContact(distance_tolerance_m=-1e-10), "tolerance"),
         (lambda: fastnorm.WheelsetContact(nominal_radius_m=-0.45), "nominal_radius must be positive"),
         (lambda: fastnorm.WheelsetContact(gauge_m=math.nan), "gauge must be positive"),
         (lambda: fastnorm.WheelsetContact(wheel_profile="/nonexistent.prw"), "/nonexistent.prw"),

@@ -84,6 +84,16 @@ def test_a_failed_patch_solve_is_reported_with_its_wheel_and_patch():
     assert fine.ok and fine.status.code == "ok" and fine.status.wheel is None
 
 
+def test_h_interpolated_along_rows_moves_forces_by_at_most_stiffness_times_its_bound():
+    pose = dict(lateral_shift_m=3e-3, vertical_m=0.1e-3, yaw_rad=2e-3)
+    exact = fastnorm.WheelsetContact(solver="norm", elements=20, distance_tolerance_m=0.0).evaluate(**pose)
+    rows = fastnorm.WheelsetContact(solver="norm", elements=20).evaluate(**pose)
+    for wheel_exact, wheel_rows in zip(exact.wheels, rows.wheels):
+        for a, b in zip(wheel_exact.patches, wheel_rows.patches):
+            assert np.abs(a.undeformed_distance_m - b.undeformed_distance_m).max() <= 1e-10
+            assert abs(a.normal_force_n - b.normal_force_n) <= 1e-8 * a.normal_force_n + a.stiffness_n_per_m * 1e-10
+
+
 def test_evaluate_takes_the_pose_an_equilibrium_returns(model):
     found = model.equilibrium(load_n=200e3, lateral_shift_m=2e-3)
     by_pose = model.evaluate(found.pose)
