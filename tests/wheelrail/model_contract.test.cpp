@@ -232,3 +232,71 @@ TEST_CASE("A trial step restored leaves no trace: the step again is bit for bit 
   check_trial_steps<fastnorm::ReducedSolver<fastnorm::PolynomialEdgeBasis>>("polynomial-edge:4:1");
   check_trial_steps<fastnorm::AnySolver<>>("polynomial:4");
 }
+
+TEST_CASE("The same pose reached along different histories: forces within the grid's and the basis's cold bounds",
+          "[wheelrail][model]") {
+  // An answer depends on the committed history in two ways (docs/wheel-rail.md §9): the
+  // patch grid sits on the lattice of the element where the patch appeared (a placement of
+  // the same discretisation, shifted by a fraction of an element), and a warm reduced solve
+  // starts from the last contact set. The first is bounded by the discretisation error of
+  // the grid itself, estimated by cold CG on twice as many elements; the second by the
+  // basis's cold bound against NORM.
+  const wr::Track track;
+  const wr::Wheelset wheelset;
+  auto target = wr::rigid_contact_pose(track, wheelset, 2e-3, 1e-3);
+  target.z += 0.1e-3;
+  auto cold_force = [&](const char* solver, Eigen::Index elements, std::optional<bool> warm) {
+    auto options = coarse(solver);
+    options.grid.elements = elements;
+    options.reduced_warm_start = warm;
+    wr::WheelsetContact<> model(track, wheelset, options);
+    const auto& result = model.evaluate(target);
+    REQUIRE(result.ok());
+    return std::array<double, 2>{result.wheels[0].normal_force, result.wheels[1].normal_force};
+  };
+  const auto coarse_cg = cold_force("cg", 40, std::nullopt), fine_cg = cold_force("cg", 80, std::nullopt);
+  struct Basis {
+    const char* name;
+    std::optional<bool> warm;
+    double cold_bound;  // its force error against NORM (docs/performance.md §8)
+  };
+  for (const Basis& basis : {Basis{"norm", std::nullopt, 0}, Basis{"cg", std::nullopt, 1e-8},
+                             Basis{"elliptic", false, 5.5e-4}, Basis{"elliptic", true, 5.5e-4},
+                             Basis{"polynomial-edge:4:1", std::nullopt, 5e-5}}) {
+    INFO(basis.name << (basis.warm ? (*basis.warm ? " warm" : " cold") : ""));
+    const auto cold = cold_force(basis.name, 40, basis.warm);
+    // Histories: from the left and from the right in 25 steps of 80 µm, pressed in from
+    // 80 µm above, and a jump from the other side of the track (the patches appear anew).
+    for (int history = 0; history < 4; ++history) {
+      INFO("history " << history);
+      auto options = coarse(basis.name);
+      options.grid.elements = 40;
+      options.reduced_warm_start = basis.warm;
+      wr::WheelsetContact<> model(track, wheelset, options);
+      const int steps = 25;
+      for (int k = 0; k < steps; ++k) {
+        const double remaining = static_cast<double>(steps - k) / steps;
+        wr::WheelsetPose pose = target;
+        if (history < 2) {
+          pose = wr::rigid_contact_pose(track, wheelset, target.y + (history == 0 ? -2e-3 : 2e-3) * remaining, target.yaw);
+          pose.z += 0.1e-3;
+        } else if (history == 2) {
+          pose.z -= 0.08e-3 * remaining;
+        } else {
+          pose = wr::rigid_contact_pose(track, wheelset, -4e-3, -2e-3);
+          pose.z += 0.1e-3;
+        }
+        REQUIRE(model.evaluate(pose).ok());
+      }
+      const auto& result = model.evaluate(target);
+      REQUIRE(result.ok());
+      for (std::size_t w = 0; w < 2; ++w) {
+        const double difference = std::abs(result.wheels[w].normal_force / cold[w] - 1);
+        const double grid_bound = std::abs(coarse_cg[w] / fine_cg[w] - 1);
+        CHECK(difference <= grid_bound + basis.cold_bound);
+        // After the jump every patch appeared anew, on the grid and from the start of a cold model.
+        if (history == 3) CHECK(result.wheels[w].normal_force == cold[w]);
+      }
+    }
+  }
+}
