@@ -259,6 +259,7 @@ TEST_CASE("The contact search samples near contact exactly as the full sampling"
   const wr::Track track;
   const wr::Wheelset wheelset;
   int poses = 0, penetrating = 0, different = 0;
+  double largest = 0;
   for (double y = -8e-3; y <= 8e-3; y += 1e-3) {
     for (double yaw : {-8e-3, 0.0, 5e-3}) {
       const auto rigid = wr::rigid_contact_pose(track, wheelset, y, yaw);
@@ -271,10 +272,13 @@ TEST_CASE("The contact search samples near contact exactly as the full sampling"
           REQUIRE(full.size() == near.size());
           ++poses;
           for (std::size_t k = 0; k < full.size(); ++k) {
-            // Every penetrating sample is taken, and with the full sampling's value.
+            // Every penetrating sample is taken, and with the full sampling's value: to the
+            // accuracy of the rail's inversion, which continues from the neighbouring sample
+            // there (one Newton step of at most 0.2 µm, error below 1e-12 m; Track::rail_height).
             if (full[k].gap < 0 || near[k].gap < 0) {
               ++penetrating;
-              if (near[k].gap != full[k].gap) ++different;
+              if (!(std::abs(near[k].gap - full[k].gap) <= 1e-12)) ++different;
+              largest = std::max(largest, std::abs(near[k].gap - full[k].gap));
             }
           }
         }
@@ -284,6 +288,7 @@ TEST_CASE("The contact search samples near contact exactly as the full sampling"
   CHECK(poses == 17 * 3 * 4 * 2);
   CHECK(penetrating > 1000);
   CHECK(different == 0);
+  WARN("near-contact sampling against the full sampling: largest gap difference " << largest << " m");
 }
 
 TEST_CASE("The contact search continued from step to step samples as the full sampling", "[wheelrail][geometry]") {
@@ -312,9 +317,9 @@ TEST_CASE("The contact search continued from step to step samples as the full sa
         for (std::size_t k = 0; k < full.size(); ++k) {
           taken += near[k].wheel.radius > 0;
           taken_cold += cold[k].wheel.radius > 0;
-          if (full[k].gap < 0 || near[k].gap < 0) {
+          if (full[k].gap < 0 || near[k].gap < 0) {  // taken, and to 1e-12 m (as above)
             ++penetrating;
-            if (near[k].gap != full[k].gap) ++different;
+            if (!(std::abs(near[k].gap - full[k].gap) <= 1e-12)) ++different;
           }
         }
       }

@@ -63,17 +63,26 @@ struct ContactRegion {
   double weight = 0;              ///< total weight (for merging)
 };
 
-/// The gap between `side`'s wheel and rail at wheel profile coordinate y_w.
+/// The gap between `side`'s wheel and rail at wheel profile coordinate y_w. `rail_y` may
+/// hold the rail profile coordinate of a nearby sample to start from (Track::rail_height)
+/// and receives this one's.
 inline GapSample gap_at(const Track& track, const Wheelset& wheelset, Side side, double profile_y,
-                        const WheelsetPose& pose, const Eigen::Matrix3d& rotation) {
+                        const WheelsetPose& pose, const Eigen::Matrix3d& rotation, double& rail_y) {
   GapSample sample;
   sample.wheel = wheelset.locus(side, profile_y, pose, rotation);
-  if (const auto rail = track.rail_height(side, sample.wheel.point.y())) {
+  if (const auto rail = track.rail_height(side, sample.wheel.point.y(), rail_y)) {
     sample.rail_z = rail->value;
     sample.rail_slope = rail->slope;
     sample.gap = rail->value - sample.wheel.point.z();
   }
   return sample;
+}
+
+/// The same, from no nearby sample.
+inline GapSample gap_at(const Track& track, const Wheelset& wheelset, Side side, double profile_y,
+                        const WheelsetPose& pose, const Eigen::Matrix3d& rotation) {
+  double rail_y = std::numeric_limits<double>::quiet_NaN();
+  return gap_at(track, wheelset, side, profile_y, pose, rotation, rail_y);
 }
 
 namespace detail {
@@ -132,8 +141,14 @@ class GapSampler {
     const auto& profile = wheelset.profile();
     const auto count = detail::last_sample(profile, options.step);
     const Eigen::Matrix3d rotation = Wheelset::rotation(pose);
+    // The rail profile coordinates of the last two samples taken in a run of neighbours: the
+    // next one's is extrapolated linearly from them (NaN: unknown, found by bracketing).
+    double rail_y = std::numeric_limits<double>::quiet_NaN(), rail_y_before = rail_y;
     auto take = [&](std::size_t k) {
-      samples_[k] = gap_at(track, wheelset, side, detail::sample_y(profile, options.step, k), pose, rotation);
+      double guess = std::isfinite(rail_y_before) ? 2 * rail_y - rail_y_before : rail_y;
+      samples_[k] = gap_at(track, wheelset, side, detail::sample_y(profile, options.step, k), pose, rotation, guess);
+      rail_y_before = rail_y;
+      rail_y = guess;
     };
     const bool continued = last_pose_ && track_id_ == track.id() && wheelset_id_ == wheelset.id() && side_ == side &&
                            step_ == options.step;
@@ -167,7 +182,8 @@ class GapSampler {
     for (std::size_t first = 0; first < count; first += coarse_stride) {
       const std::size_t last_k = std::min(first + coarse_stride, count);
       if (!(std::min(samples_[first].gap, samples_[last_k].gap) < candidate_gap)) continue;
-      for (std::size_t k = first + 1; k < last_k; ++k) take(k);
+      rail_y = rail_y_before = std::numeric_limits<double>::quiet_NaN();
+      for (std::size_t k = first + 1; k < last_k; ++k) take(k);  // each from its neighbours' rail points
     }
     return samples_;
   }

@@ -88,8 +88,18 @@ class Track {
   /// Height Z (m, down) of the rail on `side` at lateral track position y (m), and dZ/dy;
   /// empty where y is beyond the rail profile.
   std::optional<ProfileValue<double>> rail_height(Side side, double y) const {
+    double profile_y = std::numeric_limits<double>::quiet_NaN();
+    return rail_height(side, y, profile_y);
+  }
+
+  /// The same, continuing from a nearby point: `profile_y` holds the right rail's y_r there
+  /// (NaN if unknown) and receives this point's (NaN off the rail). From a good guess one
+  /// Newton step of at most 50 nm is accepted, as in distance_to_rail (G' ≈ cos θ,
+  /// G'' = sin θ·z_r''); the contact search's neighbouring locus samples use it.
+  std::optional<ProfileValue<double>> rail_height(Side side, double y, double& profile_y) const {
     const double sign = side_sign(side);
-    const auto y_r = right_profile_coordinate(sign * y);
+    const auto y_r = right_profile_coordinate(sign * y, profile_y);
+    profile_y = y_r ? *y_r : std::numeric_limits<double>::quiet_NaN();
     if (!y_r) return std::nullopt;
     const auto surface = right_rail(*y_r);
     return ProfileValue<double>{surface.z, sign * surface.slope};
@@ -104,8 +114,9 @@ class Track {
 
   /// The same, continuing from a nearby line: `profile_y` holds y_r where that line met the
   /// right rail's profile (NaN if unknown) and receives this one's. From a good guess one
-  /// Newton step of at most 0.2 µm is accepted (its error ≈ |G''/2G'|·step², below 1e-11 m
-  /// for the head's curvatures), as along the rows of a patch (docs/wheel-rail.md §4).
+  /// Newton step of at most 50 nm is accepted: its error ≈ |G''/2G'|·step² stays below
+  /// 1e-13 m, since |G''/2G'| reaches about 30 /m on the gauge corner's R13 arc, where the
+  /// head is steep (docs/wheel-rail.md §4).
   std::optional<double> distance_to_rail(Side side, double y, double z, double dir_y, double dir_z,
                                          double& profile_y) const {
     const double sign = side_sign(side);
@@ -119,9 +130,10 @@ class Track {
     };
     const double low = rail_.y_min, high = rail_.y_max;
     std::optional<double> y_r;
-    if (std::isfinite(profile_y)) y_r = detail::newton_root(crossing, profile_y, low, high, 1e-13, 2e-7);
+    if (profile_y >= low && profile_y <= high) y_r = detail::newton_root(crossing, profile_y, low, high, 1e-13, 5e-8);
     if (!y_r) {
       const double at_low = crossing(low).value;
+      profile_y = std::numeric_limits<double>::quiet_NaN();
       if ((at_low < 0) == (crossing(high).value < 0)) return std::nullopt;
       const auto guess = right_profile_coordinate(y);
       y_r = detail::bracketed_root(crossing, low, at_low, high, guess ? *guess : (low + high) / 2, 1e-13);
@@ -150,12 +162,16 @@ class Track {
 
   // y_r of the right rail point at track position y: y(y_r) increases monotonically
   // (dy/dy_r = cosθ + sinθ·z_r' > 0 on any head with slopes above −cotθ).
-  std::optional<double> right_profile_coordinate(double y) const {
+  // From `guess` (a nearby point's y_r) by Newton when it converges at once, else bracketed.
+  std::optional<double> right_profile_coordinate(double y, double guess = std::numeric_limits<double>::quiet_NaN()) const {
     auto offset = [&](double y_r) {
       const auto at = rail_.evaluate(y_r);
       return ProfileValue<double>{cos_ * y_r + sin_ * at.value + shift_y_ - y, cos_ + sin_ * at.slope};
     };
     if (!(y >= first_y_ && y <= last_y_)) return std::nullopt;
+    if (guess >= rail_.y_min && guess <= rail_.y_max) {  // false for NaN
+      if (const auto root = detail::newton_root(offset, guess, rail_.y_min, rail_.y_max, 1e-13, 5e-8)) return root;
+    }
     return detail::bracketed_root(offset, rail_.y_min, first_y_ - y, rail_.y_max, (y - shift_y_) / cos_, 1e-13);
   }
 
