@@ -63,13 +63,13 @@ struct ContactRegion {
   double weight = 0;              ///< total weight (for merging)
 };
 
-/// The gap between `side`'s wheel and rail at wheel profile coordinate y_w. `rail_y` may
-/// hold the rail profile coordinate of a nearby sample to start from (Track::rail_height)
-/// and receives this one's.
+/// The gap between `side`'s wheel and rail at wheel profile coordinate y_w, with the pose's
+/// rotation and tan ψ given. `rail_y` may hold the rail profile coordinate of a nearby
+/// sample to start from (Track::rail_height) and receives this one's.
 inline GapSample gap_at(const Track& track, const Wheelset& wheelset, Side side, double profile_y,
-                        const WheelsetPose& pose, const Eigen::Matrix3d& rotation, double& rail_y) {
+                        const WheelsetPose& pose, const Eigen::Matrix3d& rotation, double tan_yaw, double& rail_y) {
   GapSample sample;
-  sample.wheel = wheelset.locus(side, profile_y, pose, rotation);
+  sample.wheel = wheelset.locus(side, profile_y, pose, rotation, tan_yaw);
   if (const auto rail = track.rail_height(side, sample.wheel.point.y(), rail_y)) {
     sample.rail_z = rail->value;
     sample.rail_slope = rail->slope;
@@ -82,7 +82,7 @@ inline GapSample gap_at(const Track& track, const Wheelset& wheelset, Side side,
 inline GapSample gap_at(const Track& track, const Wheelset& wheelset, Side side, double profile_y,
                         const WheelsetPose& pose, const Eigen::Matrix3d& rotation) {
   double rail_y = std::numeric_limits<double>::quiet_NaN();
-  return gap_at(track, wheelset, side, profile_y, pose, rotation, rail_y);
+  return gap_at(track, wheelset, side, profile_y, pose, rotation, std::tan(pose.yaw), rail_y);
 }
 
 namespace detail {
@@ -144,9 +144,11 @@ class GapSampler {
     // The rail profile coordinates of the last two samples taken in a run of neighbours: the
     // next one's is extrapolated linearly from them (NaN: unknown, found by bracketing).
     double rail_y = std::numeric_limits<double>::quiet_NaN(), rail_y_before = rail_y;
+    const double tan_yaw = std::tan(pose.yaw);
     auto take = [&](std::size_t k) {
       double guess = std::isfinite(rail_y_before) ? 2 * rail_y - rail_y_before : rail_y;
-      samples_[k] = gap_at(track, wheelset, side, detail::sample_y(profile, options.step, k), pose, rotation, guess);
+      samples_[k] =
+          gap_at(track, wheelset, side, detail::sample_y(profile, options.step, k), pose, rotation, tan_yaw, guess);
       rail_y_before = rail_y;
       rail_y = guess;
     };
@@ -158,7 +160,7 @@ class GapSampler {
     // δ of §4 item 3 for a coarse sample c: the part common to every sample, then its own.
     const double shift = std::abs(pose.y - last.y) + std::abs(pose.z - last.z);
     const double turn = std::abs(pose.roll - last.roll) + std::abs(pose.yaw - last.yaw);
-    const double tan_last = std::tan(last.yaw), tan_now = std::tan(pose.yaw);
+    const double tan_last = std::tan(last.yaw), tan_now = tan_yaw;
     const double tan_largest = std::max(std::abs(tan_last), std::abs(tan_now));
     auto drift_of = [&](const Coarse& c) {
       const double sine = std::abs(c.radius_slope) * tan_largest;  // |sin θ| at either pose

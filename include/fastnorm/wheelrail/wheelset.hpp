@@ -140,8 +140,14 @@ class Wheelset {
 
   /// The locus point at y_w: sin θ = −ρ'·tan ψ (docs/wheel-rail.md §4, item 1), then C + R·p_ws.
   LocusPoint locus(Side side, double profile_y, const WheelsetPose& pose, const Matrix3& rotation) const {
+    return locus(side, profile_y, pose, rotation, std::tan(pose.yaw));
+  }
+
+  /// The same with tan ψ given (a search over many points of one pose computes it once).
+  LocusPoint locus(Side side, double profile_y, const WheelsetPose& pose, const Matrix3& rotation,
+                   double tan_yaw) const {
     const auto rho = radius(side, profile_y);
-    const double sine = std::clamp(-rho.slope * std::tan(pose.yaw), -1.0, 1.0);
+    const double sine = std::clamp(-rho.slope * tan_yaw, -1.0, 1.0);
     const double angle = std::asin(sine);
     const Vector3 on_wheel(rho.value * sine, axle_coordinate(side, profile_y), rho.value * std::sqrt(1 - sine * sine));
     return {profile_y, rho.value, rho.slope, angle, centre(pose) + rotation * on_wheel};
