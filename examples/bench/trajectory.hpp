@@ -210,7 +210,13 @@ inline void print_warm_vs_cold(const std::string& name, const TrajectoryRun& war
 inline void bench_vehicle(const wr::Track& track, const wr::Wheelset& wheelset, const std::vector<wr::WheelsetPose>& poses,
                           int steps, int shift, const std::string& solver) {
   constexpr int wheelsets = 4;
-  const auto options = TrajectorySolver::parse(solver).options();
+  const TrajectorySolver parsed = TrajectorySolver::parse(solver);
+  const auto options = parsed.options();
+#if defined(_OPENMP)
+  const std::vector<int> thread_counts{1, 2};
+#else
+  const std::vector<int> thread_counts{1};  // a second vehicle would run on one thread too
+#endif
   struct Vehicle {
     int threads;
     std::vector<std::unique_ptr<wr::WheelsetContact<>>> wheelsets;
@@ -218,7 +224,7 @@ inline void bench_vehicle(const wr::Track& track, const wr::Wheelset& wheelset, 
     long failed_steps = 0;
   };
   std::vector<Vehicle> vehicles;
-  for (const int threads : {1, 2}) {
+  for (const int threads : thread_counts) {
     Vehicle vehicle{threads, {}, {}, 0};
     for (int k = 0; k < wheelsets; ++k) {
       vehicle.wheelsets.push_back(std::make_unique<wr::WheelsetContact<>>(track, wheelset, options));
@@ -240,21 +246,14 @@ inline void bench_vehicle(const wr::Track& track, const wr::Wheelset& wheelset, 
       vehicle.failed_steps += failed > 0 ? 1 : 0;
     }
   }
+  const std::string label = parsed.label();
   for (const auto& vehicle : vehicles) {
-#if defined(_OPENMP)
-    const std::string threads = std::to_string(vehicle.threads);
-#else
-    const std::string threads = vehicle.threads == 1 ? "1" : "unavailable";
-    if (vehicle.threads != 1) continue;
-#endif
-    std::printf("vehicle solver=%s wheels=%d threads=%s step_us=%.1f step_p99_us=%.1f failed_steps=%ld\n",
-                TrajectorySolver::parse(solver).label().c_str(), 2 * wheelsets, threads.c_str(),
-                1e6 * quantile(vehicle.step_seconds, 0.5), 1e6 * quantile(vehicle.step_seconds, 0.99),
-                vehicle.failed_steps);
+    std::printf("vehicle solver=%s wheels=%d threads=%d step_us=%.1f step_p99_us=%.1f failed_steps=%ld\n",
+                label.c_str(), 2 * wheelsets, vehicle.threads, 1e6 * quantile(vehicle.step_seconds, 0.5),
+                1e6 * quantile(vehicle.step_seconds, 0.99), vehicle.failed_steps);
   }
 #if !defined(_OPENMP)
-  std::printf("vehicle solver=%s wheels=%d threads=unavailable (built without OpenMP)\n",
-              TrajectorySolver::parse(solver).label().c_str(), 2 * wheelsets);
+  std::printf("vehicle solver=%s wheels=%d threads=unavailable (built without OpenMP)\n", label.c_str(), 2 * wheelsets);
 #endif
   std::fflush(stdout);
 }

@@ -125,11 +125,13 @@ class NormalLines {
     return root;
   }
 
-  /// Elements [first, last] of the current row exactly into `h` (rail distance `rail`): each
-  /// root extrapolated from the last three (`roots`, newest first, `known` of them valid) and
-  /// accepted by root_near, bracketed where that fails.
-  void exact_elements(Eigen::Index first, Eigen::Index last, Eigen::Index j, double rail, std::array<double, 3>& roots,
-                      int& known, Eigen::VectorXd& h) const {
+  /// Elements [first, last] of the current row exactly into `h` (rail distance `rail`),
+  /// continuing from `seed`, the root at element first − 1 (NaN: none): each root
+  /// extrapolated from the last three and accepted by root_near, bracketed where that fails.
+  void exact_elements(Eigen::Index first, Eigen::Index last, Eigen::Index j, double rail, double seed,
+                      Eigen::VectorXd& h) const {
+    std::array<double, 3> roots{seed, 0, 0};  // the last roots, newest first
+    int known = std::isnan(seed) ? 0 : 1;      // how many of them are valid
     for (Eigen::Index i = first; i <= last; ++i) {
       const auto at = static_cast<double>(i);
       std::optional<double> root;
@@ -174,10 +176,11 @@ class NormalLines {
 /// its slope dt/di. On an interval of L elements the Hermite cubic is within L⁴/384·max|t⁗|
 /// of t; t⁗ is estimated from the jumps of the cubics' third derivatives between
 /// neighbouring intervals, and an interval whose bound, times a safety factor of 4, exceeds
-/// `tolerance` is computed exactly. Returns false if a node has no wheel surface (the caller
-/// then computes the row exactly).
+/// `tolerance` is computed exactly. `first_root` holds the previous row's first node root
+/// (NaN: none), where this row's first node starts, and receives this row's. Returns false
+/// if a node has no wheel surface (the caller then computes the row exactly).
 inline bool interpolate_row(const NormalLines& lines, Eigen::Index j, double rail, Eigen::Index span, double tolerance,
-                            double& first_root, bool first_known, Eigen::VectorXd& h) {
+                            double& first_root, Eigen::VectorXd& h) {
   struct Node {
     double i = 0, t = 0, slope = 0;  // position (elements), root (m), dt/di (m per element)
   };
@@ -199,7 +202,7 @@ inline bool interpolate_row(const NormalLines& lines, Eigen::Index j, double rai
         guess += (previous.slope - before.slope) / (previous.i - before.i) * length * length / 2;
       }
       root = lines.root_near(i, guess);
-    } else if (first_known) {
+    } else if (!std::isnan(first_root)) {
       root = lines.root_near(i, first_root);  // the previous row's first node: rows move smoothly too
     }
     if (!root) root = lines.root_bracketed(i, q > 0 ? ring[static_cast<std::size_t>((q - 1) % 4)].t : rail);
@@ -260,9 +263,7 @@ inline bool interpolate_row(const NormalLines& lines, Eigen::Index j, double rai
         row[i] = rail - (a.t + d * (a.slope + d * (c2 + d * c3)));
       }
     } else if (end > first + 1) {
-      std::array<double, 3> roots{a.t, 0, 0};
-      int known = 1;
-      lines.exact_elements(first + 1, end - 1, j, rail, roots, known, h);
+      lines.exact_elements(first + 1, end - 1, j, rail, a.t, h);
     }
     previous_third = this_third;
     this_third = next_third;
@@ -272,35 +273,6 @@ inline bool interpolate_row(const NormalLines& lines, Eigen::Index j, double rai
 }
 
 }  // namespace detail
-
-/// The exact undeformed distance h = n_rail − n_wheel at every element centre of `grid`
-/// (docs/wheel-rail.md §4, item 6): the rail along the normal line through
-/// q = P_ref + x e_x + s t_s by a 2-D intersection, the wheel by solving
-/// √(x_w² + z_w²) = ρ(y_w) in wheelset coordinates. `h` is resized to the grid.
-/// @throws fastnorm::invalid_argument for a pose outside PoseLimits or a non-finite frame
-inline void undeformed_distance(const Track& track, const Wheelset& wheelset, const WheelsetPose& pose,
-                                const PatchFrame& frame, const Grid<double>& grid, Eigen::VectorXd& h) {
-  detail::NormalLines lines(track, wheelset, pose, frame, grid);
-  h.resize(grid.size());
-  for (Eigen::Index j = 0; j < grid.my(); ++j) {
-    const auto rail = lines.start_row(j);
-    if (!rail) {
-      for (Eigen::Index i = 0; i < grid.mx(); ++i) h(grid.index(i, j)) = no_surface_gap;
-      continue;
-    }
-    std::array<double, 3> roots{};
-    int known = 0;
-    lines.exact_elements(0, grid.mx() - 1, j, *rail, roots, known, h);
-  }
-}
-
-/// The same, returned.
-inline Eigen::VectorXd undeformed_distance(const Track& track, const Wheelset& wheelset, const WheelsetPose& pose,
-                                           const PatchFrame& frame, const Grid<double>& grid) {
-  Eigen::VectorXd h;
-  undeformed_distance(track, wheelset, pose, frame, grid, h);
-  return h;
-}
 
 /// h to `accuracy` (docs/wheel-rail.md §4, item 7): along each row exact at nodes and
 /// interpolated between them where the estimated error is below accuracy.tolerance, exact
@@ -313,25 +285,42 @@ inline void undeformed_distance(const Track& track, const Wheelset& wheelset, co
                                 Eigen::VectorXd& h) {
   accuracy.validate();
   const auto span = static_cast<Eigen::Index>(std::floor(accuracy.node_spacing / grid.dx()));
-  if (accuracy.tolerance == 0 || span < 2) return undeformed_distance(track, wheelset, pose, frame, grid, h);
+  const bool by_rows = accuracy.tolerance > 0 && span >= 2;
   detail::NormalLines lines(track, wheelset, pose, frame, grid);
   h.resize(grid.size());
-  double first_root = 0;  // of the last row, where its nodes were found
-  bool first_known = false;
+  const double none = std::numeric_limits<double>::quiet_NaN();
+  double first_root = none;  // of the last row interpolated: where the next row's first node starts
   for (Eigen::Index j = 0; j < grid.my(); ++j) {
     const auto rail = lines.start_row(j);
     if (!rail) {
       for (Eigen::Index i = 0; i < grid.mx(); ++i) h(grid.index(i, j)) = no_surface_gap;
-      first_known = false;
+      first_root = none;
       continue;
     }
-    first_known = detail::interpolate_row(lines, j, *rail, span, accuracy.tolerance, first_root, first_known, h);
-    if (!first_known) {
-      std::array<double, 3> roots{};
-      int known = 0;
-      lines.exact_elements(0, grid.mx() - 1, j, *rail, roots, known, h);
-    }
+    if (by_rows && detail::interpolate_row(lines, j, *rail, span, accuracy.tolerance, first_root, h)) continue;
+    first_root = none;
+    lines.exact_elements(0, grid.mx() - 1, j, *rail, none, h);
   }
+}
+
+/// The exact undeformed distance h = n_rail − n_wheel at every element centre of `grid`
+/// (docs/wheel-rail.md §4, item 6): the rail along the normal line through
+/// q = P_ref + x e_x + s t_s by a 2-D intersection, the wheel by solving
+/// √(x_w² + z_w²) = ρ(y_w) in wheelset coordinates. `h` is resized to the grid.
+/// @throws fastnorm::invalid_argument for a pose outside PoseLimits or a non-finite frame
+inline void undeformed_distance(const Track& track, const Wheelset& wheelset, const WheelsetPose& pose,
+                                const PatchFrame& frame, const Grid<double>& grid, Eigen::VectorXd& h) {
+  DistanceAccuracy exact;
+  exact.tolerance = 0;
+  undeformed_distance(track, wheelset, pose, frame, grid, exact, h);
+}
+
+/// The same, returned.
+inline Eigen::VectorXd undeformed_distance(const Track& track, const Wheelset& wheelset, const WheelsetPose& pose,
+                                           const PatchFrame& frame, const Grid<double>& grid) {
+  Eigen::VectorXd h;
+  undeformed_distance(track, wheelset, pose, frame, grid, h);
+  return h;
 }
 
 }  // namespace fastnorm::wheelrail
