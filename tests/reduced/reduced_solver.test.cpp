@@ -1,5 +1,6 @@
 #include <catch2/catch.hpp>
 #include <fastnorm/any_solver.hpp>
+#include <fastnorm/detail/in_place_cholesky.hpp>
 #include <fastnorm/hertz.hpp>
 #include <fastnorm/norm_solver.hpp>
 #include <fastnorm/reduced_solver.hpp>
@@ -68,6 +69,38 @@ TEST_CASE("A rank-deficient basis takes the minimum-norm solve and the same answ
   REQUIRE(doubled.ok());
   CHECK(doubled.status == single.status);
   CHECK((doubled.pressure - single.pressure).cwiseAbs().maxCoeff() <= 1e-9 * single.pressure.maxCoeff());
+}
+
+TEST_CASE("A factorisation continued from a kept leading factor is the factorisation", "[reduced]") {
+  // The incremental solve keeps the rows of the previous set's factor for its leading
+  // unknowns and computes the rest (detail/in_place_cholesky.hpp): checked against Eigen's
+  // LLT of the whole matrix, for every size of the kept part.
+  const Eigen::Index n = 23;
+  const Eigen::MatrixXd b = Eigen::MatrixXd::Random(n, n);
+  const Eigen::MatrixXd matrix = b * b.transpose() + Eigen::MatrixXd::Identity(n, n);
+  const Eigen::MatrixXd reference = Eigen::LLT<Eigen::MatrixXd>(matrix).matrixL();
+  const Eigen::VectorXd rhs = Eigen::VectorXd::LinSpaced(n, -1.0, 2.0);
+  for (const Eigen::Index kept : {0, 1, 7, 22, 23}) {
+    fastnorm::detail::InPlaceCholesky<double> cholesky;
+    cholesky.resize(n);
+    cholesky.matrix() = matrix;
+    cholesky.matrix().topLeftCorner(kept, kept) = reference.topLeftCorner(kept, kept);
+    REQUIRE(cholesky.factorise_from(kept));
+    const Eigen::MatrixXd factor = cholesky.factor().triangularView<Eigen::Lower>();
+    INFO("kept " << kept);
+    CHECK((factor - reference).cwiseAbs().maxCoeff() <= 1e-13 * reference.cwiseAbs().maxCoeff());
+    Eigen::VectorXd solution = rhs;
+    cholesky.solve_in_place(solution);
+    CHECK((matrix * solution - rhs).norm() <= 1e-12 * matrix.norm() * solution.norm());
+  }
+  // A trailing block that is not positive definite is reported, not factored.
+  fastnorm::detail::InPlaceCholesky<double> cholesky;
+  cholesky.resize(n);
+  cholesky.matrix() = matrix;
+  cholesky.matrix()(n - 1, n - 1) = -1.0;
+  cholesky.matrix().topLeftCorner(7, 7) = reference.topLeftCorner(7, 7);
+  CHECK_FALSE(cholesky.factorise_from(7));
+  CHECK_FALSE(cholesky.factored());
 }
 
 TEST_CASE("Reduced solvers against full NORM on Hertz contacts", "[reduced][hertz]") {

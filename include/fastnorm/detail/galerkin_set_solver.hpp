@@ -29,9 +29,10 @@ struct GalerkinMemory {
   using Index = Eigen::Index;
   using Matrix = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;
   struct Assembly {
-    std::vector<Segment> segments;
+    std::vector<Segment> segments;   // sorted by strip, then first element
+    std::vector<Index> order;        // segment indices in the order of their unknowns
     std::vector<Index> offsets;      // first unknown of each segment
-    ScratchMatrix<Scalar> matrix;    // Aᵀ C_II A, lower triangle filled
+    ScratchMatrix<Scalar> matrix;    // Aᵀ C_II A, both triangles
     InPlaceCholesky<Scalar> cholesky;
     Index unknowns() const { return matrix.rows(); }
   };
@@ -42,7 +43,8 @@ struct GalerkinMemory {
   std::vector<Assembly> spare;      // storage to reuse
   // Workspace of one set.
   std::vector<Segment> segments, target_runs;
-  std::vector<Index> old_index;
+  std::vector<Index> old_index, new_index;
+  std::vector<char> kept_segment;
   std::vector<std::size_t> direct;
   ScratchMatrix<Scalar> coupling, times_basis, block_entries, reduced_rhs, coefficients;
 
@@ -71,9 +73,10 @@ struct GalerkinMemory {
 
 /// Step 2 of the reduced method on one set: segments, basis blocks, Galerkin matrix
 /// assembled by pairs of segments from the Toeplitz table, solve, expansion. Blocks between
-/// segments that did not change since the previous set are copied, not recomputed; a set
-/// already assembled in the previous solve of a sequence reuses that assembly and its
-/// factorisation (docs/method.md §3, docs/performance.md §3).
+/// segments that did not change since the previous set are copied, not recomputed, and the
+/// factor's rows of the previous set's leading unchanged segments are kept; a set already
+/// assembled in the previous solve of a sequence reuses that assembly and its factorisation
+/// (docs/method.md §3, docs/performance.md §3).
 template <typename Basis, typename Scalar>
 class GalerkinSetSolver {
  public:
@@ -103,21 +106,13 @@ class GalerkinSetSolver {
     } else {
       next = memory_.take_spare();
       next.segments.assign(memory_.segments.begin(), memory_.segments.end());
-      next.offsets.clear();
-      Index unknowns = 0;
-      for (const Segment& segment : next.segments) {
-        next.offsets.push_back(unknowns);
-        unknowns += unknowns_of(segment.count);
-      }
-      next.matrix.resize(unknowns, unknowns);
-      // Blocks are copied from the set solved just before (or last, in the previous solve).
+      // Blocks and factor rows come from the set solved just before (or last, in the previous solve).
       const Assembly* previous = !memory_.path.empty() ? &memory_.path.back()
                                  : !last_path.empty()  ? &last_path.back()
                                                        : nullptr;
-      assemble(next, previous);
-      next.cholesky.resize(unknowns);
-      next.cholesky.matrix().template triangularView<Eigen::Lower>() = next.matrix.view();
-      next.cholesky.factorise();
+      const Index kept = order_unknowns(next, previous);
+      assemble(next, previous, kept);
+      factorise(next, previous, kept);
     }
     memory_.path.push_back(std::move(next));
     return solve_with(memory_.path.back(), columns);
@@ -236,16 +231,76 @@ class GalerkinSetSolver {
     return is_identity(count) ? Matrix(Matrix::Identity(count, count)) : basis_of(count);
   }
 
-  /// Lower triangle of Aᵀ C_II A, block (t, s) for t ≥ s = A_tᵀ C_ts A_s. Blocks between two
-  /// segments both in `previous` are copied from it; the others are one product of a run
-  /// of the table with the correlation table of the two segment lengths (Eq. (M2)). Pairs
-  /// without a table (past the memory budget) take the direct product: per source segment
-  /// s, the Toeplitz blocks C_ts of those targets stacked into one tall matrix times A_s.
-  void assemble(Assembly& next, const Assembly* previous) {
-    auto matrix = next.matrix.view();
-    auto& old_index = memory_.old_index;
+  /// Orders the unknowns of `next` (its `order`, `offsets` and matrix size): first the
+  /// leading segments of `previous`'s order that `next` still holds, whose rows of the
+  /// factor are kept, then its other segments that `previous` holds, in `previous`'s order,
+  /// then its new ones. A segment that changes thus moves to the end, and since the
+  /// active-set loop moves the same few strip ends back and forth, the kept part is most
+  /// of the system. Returns the number of kept unknowns (0 if `previous` has no factor).
+  Index order_unknowns(Assembly& next, const Assembly* previous) {
+    auto& old_index = memory_.old_index;  // per segment of next: its index in previous, or −1
+    auto& new_index = memory_.new_index;  // per segment of previous: its index in next, or −1
     old_index.clear();
     for (const Segment& segment : next.segments) old_index.push_back(previous_index(previous, segment));
+    next.order.clear();
+    memory_.kept_segment.assign(next.segments.size(), 0);
+    Index kept = 0;
+    if (previous != nullptr) {
+      new_index.assign(previous->segments.size(), -1);
+      for (std::size_t s = 0; s < old_index.size(); ++s) {
+        if (old_index[s] >= 0) new_index[static_cast<std::size_t>(old_index[s])] = static_cast<Index>(s);
+      }
+      bool leading = previous->cholesky.factored();
+      for (const Index p : previous->order) {
+        const Index s = new_index[static_cast<std::size_t>(p)];
+        leading = leading && s >= 0;
+        if (s < 0) continue;
+        next.order.push_back(s);
+        if (!leading) continue;
+        kept += unknowns_of(next.segments[static_cast<std::size_t>(s)].count);
+        memory_.kept_segment[static_cast<std::size_t>(s)] = 1;
+      }
+    }
+    for (std::size_t s = 0; s < old_index.size(); ++s) {
+      if (old_index[s] < 0) next.order.push_back(static_cast<Index>(s));
+    }
+    next.offsets.resize(next.segments.size());
+    Index unknowns = 0;
+    for (const Index s : next.order) {
+      next.offsets[static_cast<std::size_t>(s)] = unknowns;
+      unknowns += unknowns_of(next.segments[static_cast<std::size_t>(s)].count);
+    }
+    next.matrix.resize(unknowns, unknowns);
+    return kept;
+  }
+
+  /// The Cholesky factor of `next`: the leading `kept` × `kept` block of `previous`'s
+  /// factor (the same leading unknowns and matrix entries), the rest computed from it.
+  void factorise(Assembly& next, const Assembly* previous, Index kept) {
+    const Index n = next.unknowns();
+    next.cholesky.resize(n);
+    auto factor = next.cholesky.matrix();
+    if (kept > 0) {
+      factor.topLeftCorner(kept, kept).template triangularView<Eigen::Lower>() =
+          previous->cholesky.factor().topLeftCorner(kept, kept);
+    }
+    factor.bottomRows(n - kept) = next.matrix.view().bottomRows(n - kept);
+    next.cholesky.factorise_from(kept);
+  }
+
+  /// Aᵀ C_II A: block (t, s) for t ≥ s = A_tᵀ C_ts A_s, and its transpose. The leading
+  /// `kept` × `kept` block, between the segments kept in `previous`'s place, is copied from
+  /// it at once, as are the other blocks between two segments both in `previous`; the
+  /// others are one product of a run of the table with the correlation table of the two
+  /// segment lengths (Eq. (M2)). Pairs without a table (past the memory budget) take the
+  /// direct product: per source segment s, the Toeplitz blocks C_ts of those targets
+  /// stacked into one tall matrix times A_s. `order_unknowns` has filled `old_index` and
+  /// `kept_segment`.
+  void assemble(Assembly& next, const Assembly* previous, Index kept) {
+    auto matrix = next.matrix.view();
+    if (kept > 0) matrix.topLeftCorner(kept, kept) = previous->matrix.view().topLeftCorner(kept, kept);
+    const auto& old_index = memory_.old_index;
+    const auto& kept_segment = memory_.kept_segment;
     auto block_of_count = [this](Index count) { return block_of(count); };
     auto& direct = memory_.direct;
     for (std::size_t s = 0; s < next.segments.size(); ++s) {
@@ -254,6 +309,7 @@ class GalerkinSetSolver {
       direct.clear();
       Index rows = 0;
       for (std::size_t t = s; t < next.segments.size(); ++t) {
+        if (kept_segment[s] && kept_segment[t]) continue;
         const Segment& target = next.segments[t];
         const Index q_t = unknowns_of(target.count);
         auto block = matrix.block(next.offsets[t], next.offsets[s], q_t, q_s);
@@ -296,6 +352,16 @@ class GalerkinSetSolver {
           block.noalias() = basis_of(target.count).transpose() * half.middleRows(row, target.count);
         }
         row += target.count;
+      }
+    }
+    // The blocks (s, t), t > s, from (t, s).
+    for (std::size_t s = 0; s < next.segments.size(); ++s) {
+      const Index q_s = unknowns_of(next.segments[s].count);
+      for (std::size_t t = s + 1; t < next.segments.size(); ++t) {
+        if (kept_segment[s] && kept_segment[t]) continue;
+        const Index q_t = unknowns_of(next.segments[t].count);
+        matrix.block(next.offsets[s], next.offsets[t], q_s, q_t) =
+            matrix.block(next.offsets[t], next.offsets[s], q_t, q_s).transpose();
       }
     }
   }

@@ -30,13 +30,30 @@ class InPlaceCholesky {
   Eigen::Map<Matrix> matrix() { return storage_.view(); }
 
   /// Factorises the lower triangle of matrix() in place; false if it is not positive definite.
-  bool factorise() {
+  bool factorise() { return factorise_from(0); }
+
+  /// As factorise(), when the leading `kept` × `kept` block of matrix() already holds the
+  /// factor L11 of the matrix's leading block (copied from the factorisation of a system
+  /// with the same leading unknowns) and the rows below it hold the matrix: the last steps
+  /// of a blocked Cholesky, L21 = A21 L11⁻ᵀ and L22 L22ᵀ = A22 − L21 L21ᵀ (docs/method.md §3).
+  /// Costs about (n − kept)·kept² + (n − kept)³/3 flops instead of n³/3.
+  bool factorise_from(Index kept) {
     Eigen::Map<Matrix> values = storage_.view();
-    const Eigen::LLT<Eigen::Ref<Matrix>, Eigen::Lower> llt(values);  // in place: values now hold L
+    const Index rest = values.rows() - kept;
+    if (kept > 0 && rest > 0) {
+      auto coupling = values.bottomLeftCorner(rest, kept);
+      values.topLeftCorner(kept, kept).template triangularView<Eigen::Lower>().transpose().template solveInPlace<
+          Eigen::OnTheRight>(coupling);
+      values.bottomRightCorner(rest, rest).template selfadjointView<Eigen::Lower>().rankUpdate(coupling, Scalar(-1));
+    }
+    Eigen::Ref<Matrix> trailing = values.bottomRightCorner(rest, rest);
+    const Eigen::LLT<Eigen::Ref<Matrix>, Eigen::Lower> llt(trailing);  // in place: values now hold L
     factored_ = llt.info() == Eigen::Success;
     return factored_;
   }
   bool factored() const { return factored_; }
+  /// The factor L (lower triangle) after a successful factorise.
+  Eigen::Map<const Matrix> factor() const { return storage_.view(); }
 
   /// rhs ← A⁻¹ rhs by the two triangular solves with L (after a successful factorise).
   /// Column by column: Eigen's solve of a block of columns packs the factor into a
