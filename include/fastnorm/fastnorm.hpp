@@ -9,5 +9,6 @@
 #include "fastnorm/error.hpp"
 #include "fastnorm/hertz.hpp"
 #include "fastnorm/solvers.hpp"
+#include "fastnorm/tangential_influence.hpp"
 #include "fastnorm/io.hpp"
 #include "fastnorm/wheelrail.hpp"

@@ -68,6 +68,28 @@ class Material {
     return 1 / compliance;
   }
 
+  /// Shear modulus G = E/(2(1 + ν)) of body 1 or 2 (Pa).
+  Scalar shear_modulus(int body = 1) const {
+    return young_modulus_[body - 1] / (2 * (1 + poisson_ratio_[body - 1]));
+  }
+  /// Kalker's combined shear modulus G (Pa): 1/G = (1/G1 + 1/G2)/2, the modulus of the
+  /// tangential influence coefficients (docs/tangential.md §1).
+  Scalar combined_shear_modulus() const { return 2 / (1 / shear_modulus(1) + 1 / shear_modulus(2)); }
+  /// Kalker's combined Poisson ratio ν: ν/G = (ν1/G1 + ν2/G2)/2. With G it gives back E*:
+  /// (1 − ν)/G = 1/E*.
+  Scalar combined_poisson_ratio() const {
+    return combined_shear_modulus() * (poisson_ratio_[0] / shear_modulus(1) + poisson_ratio_[1] / shear_modulus(2)) / 2;
+  }
+  /// Kalker's difference parameter K = (G/4)·[(1 − 2ν1)/G1 − (1 − 2ν2)/G2]: how strongly
+  /// normal pressure moves the surfaces tangentially against each other (and tangential
+  /// traction normally). 0 for bodies of one material (quasi-identical); fastnorm, as
+  /// CONTACT by default, solves the normal and tangential problems uncoupled
+  /// (docs/tangential.md §1).
+  Scalar difference_parameter() const {
+    return combined_shear_modulus() / 4 *
+           ((1 - 2 * poisson_ratio_[0]) / shear_modulus(1) - (1 - 2 * poisson_ratio_[1]) / shear_modulus(2));
+  }
+
  private:
   Scalar young_modulus_[2];
   Scalar poisson_ratio_[2];

@@ -5,81 +5,17 @@
 #include <fastnorm/influence.hpp>
 #include <vector>
 
+#include "support/kernel_quadrature.hpp"
+
 namespace {
 
-using Real = long double;
-const Real pi = 3.14159265358979323846264338327950288L;
+using fastnorm::test::Real;
+const Real pi = fastnorm::test::pi_long;
 
-// Gauss–Legendre rule on [−1, 1] by Newton's method on P_n (independent of the kernel).
-struct GaussLegendre {
-  std::vector<Real> nodes, weights;
-  explicit GaussLegendre(int n) {
-    for (int i = 1; i <= n; ++i) {
-      Real x = std::cos(pi * (i - 0.25L) / (n + 0.5L)), derivative = 0;
-      for (int step = 0; step < 100; ++step) {
-        Real p0 = 1, p1 = x;
-        for (int k = 2; k <= n; ++k) {
-          const Real p2 = ((2 * k - 1) * x * p1 - (k - 1) * p0) / k;
-          p0 = p1;
-          p1 = p2;
-        }
-        derivative = n * (x * p1 - p0) / (x * x - 1);
-        const Real dx = p1 / derivative;
-        x -= dx;
-        if (std::abs(dx) < 1e-19L) break;
-      }
-      nodes.push_back(x);
-      weights.push_back(2 / ((1 - x * x) * derivative * derivative));
-    }
-  }
-  // Composite rule of `panels` equal panels on [low, high].
-  template <typename F>
-  Real integrate(F f, Real low, Real high, int panels) const {
-    Real sum = 0;
-    const Real width = (high - low) / panels;
-    for (int p = 0; p < panels; ++p) {
-      const Real mid = low + (p + 0.5L) * width;
-      for (std::size_t n = 0; n < nodes.size(); ++n) sum += weights[n] * f(mid + width / 2 * nodes[n]);
-    }
-    return sum * width / 2;
-  }
-};
-
-const GaussLegendre rule(24);
-
-// ∫₀^X ∫₀^Y dA / r for X, Y ≥ 0 in polar coordinates around the singular corner:
-// ∫₀^θc X / cos θ dθ + ∫_θc^(π/2) Y / sin θ dθ, θc = atan2(Y, X). Smooth 1-D integrands.
-Real corner_integral(Real X, Real Y) {
-  if (X == 0 || Y == 0) return 0;
-  const Real corner = std::atan2(Y, X);
-  const auto along_x = [X](Real theta) { return X / std::cos(theta); };
-  const auto along_y = [Y](Real theta) { return Y / std::sin(theta); };
-  return rule.integrate(along_x, 0, corner, 64) + rule.integrate(along_y, corner, pi / 2, 64);
-}
-
-// ∫∫ dA / r over [x1, x2] × [y1, y2], the field point at the origin (may lie inside).
-Real rectangle_integral_near(Real x1, Real x2, Real y1, Real y2) {
-  const auto signed_corner = [](Real X, Real Y) {
-    const Real sign = (X < 0) != (Y < 0) ? -1 : 1;
-    return sign * corner_integral(std::abs(X), std::abs(Y));
-  };
-  return signed_corner(x2, y2) - signed_corner(x1, y2) - signed_corner(x2, y1) + signed_corner(x1, y1);
-}
-
-// The same by a direct 2-D tensor rule: for field points well outside the rectangle.
-Real rectangle_integral_far(Real x1, Real x2, Real y1, Real y2) {
-  const auto row = [&](Real x) {
-    return rule.integrate([x](Real y) { return 1 / std::sqrt(x * x + y * y); }, y1, y2, 4);
-  };
-  return rule.integrate(row, x1, x2, 4);
-}
-
-// C(di·dx, dj·dy) by quadrature: (1/(π E*)) ∫∫ over the rectangle of the source element.
+// C(di·dx, dj·dy) by quadrature: (1/(π E*)) ∫∫ dA / r over the rectangle of the source element.
 Real quadrature_coefficient(int di, int dj, Real dx, Real dy, Real combined_modulus, bool near) {
-  const Real x = di * dx, y = dj * dy;  // field point relative to the source centre
-  const Real x1 = -x - dx / 2, x2 = -x + dx / 2, y1 = -y - dy / 2, y2 = -y + dy / 2;
   const Real integral =
-      near ? rectangle_integral_near(x1, x2, y1, y2) : rectangle_integral_far(x1, x2, y1, y2);
+      fastnorm::test::element_integral(fastnorm::test::PointKernel::inverse_distance, di, dj, dx, dy, near);
   return integral / (pi * combined_modulus);
 }
 
