@@ -10,5 +10,6 @@
 #include "fastnorm/hertz.hpp"
 #include "fastnorm/solvers.hpp"
 #include "fastnorm/tangential_influence.hpp"
+#include "fastnorm/tangential_solver.hpp"
 #include "fastnorm/io.hpp"
 #include "fastnorm/wheelrail.hpp"

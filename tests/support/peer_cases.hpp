@@ -25,6 +25,15 @@ inline std::string shared_profile(const std::string& name) {
   return std::filesystem::is_regular_file(path) ? path.string() : std::string();
 }
 
+/// CONTACT's tangential results on Hertzian cases (../shared/peer-tangential/hertz.tsv, or
+/// the folder named by FASTNORM_PEER_TANGENTIAL), or "" when absent.
+inline std::string peer_tangential_file() {
+  const char* from_environment = std::getenv("FASTNORM_PEER_TANGENTIAL");
+  const std::filesystem::path path =
+      std::filesystem::path(from_environment ? from_environment : FASTNORM_PEER_TANGENTIAL_DIR) / "hertz.tsv";
+  return std::filesystem::is_regular_file(path) ? path.string() : std::string();
+}
+
 /// Sorted paths of the peer cases whose file name starts with `prefix`; empty when the
 /// folder is absent (the caller then WARNs and skips).
 inline std::vector<std::string> peer_case_files(const std::string& prefix = "") {

@@ -1,0 +1,74 @@
+// fastnorm-bench --tangential: the steady-rolling solver (tangential_solver.hpp) on CONTACT's
+// two Hertzian examples of ../shared/peer-tangential (docs/tangential.md §8), built here from
+// their definitions: "tractcurv" (h = 0.8 x² + 0.2814 y² per metre, a/b = 0.5, 48 × 44
+// elements of 0.2889 × 0.6304 mm, Fn = 106.7 kN, μ = 0.33) at four longitudinal creepages
+// from a quarter of the area sliding to full slip, and "fastsim" (h = 0.8464 x² + 2.406 y²,
+// 44 × 44 elements of 0.4 × 0.2 mm, Fn = 82 kN, μ = 0.3, η = −6.25e-4, φ = 0.625 rad/m);
+// G = 82 GPa, ν = 0.28. One line per problem:
+//
+//   tangential case=<name> elements=<N> ncontact=<n> xi=<x> eta=<x> phi=<x> solve_ms=<median>
+//     sweeps=<k> nadh=<n> nslip=<n> fx=<N> fy=<N> mz=<N m>
+//
+// The normal problem is solved once by NORM; the time is the median over --repeats solves of
+// the tangential one, one thread.
+#pragma once
+
+#include <fastnorm/fastnorm.hpp>
+#include <fastnorm/tangential_solver.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <vector>
+
+namespace fastnorm_bench {
+
+inline void bench_tangential(int repeats) {
+  struct Problem {
+    const char* name;
+    double a1, b1, dx, dy;
+    Eigen::Index mx, my;
+    double normal_force, friction, xi, eta, phi;
+  };
+  const std::vector<Problem> problems{
+      {"tractcurv", 0.8, 0.2814, 0.2889e-3, 0.6304e-3, 48, 44, 106700, 0.33, 4e-4, 0, 0},
+      {"tractcurv", 0.8, 0.2814, 0.2889e-3, 0.6304e-3, 48, 44, 106700, 0.33, 1.6e-3, 0, 0},
+      {"tractcurv", 0.8, 0.2814, 0.2889e-3, 0.6304e-3, 48, 44, 106700, 0.33, 2.8e-3, 0, 0},
+      {"tractcurv", 0.8, 0.2814, 0.2889e-3, 0.6304e-3, 48, 44, 106700, 0.33, 1e-2, 0, 0},
+      {"fastsim", 0.8464, 2.406, 0.4e-3, 0.2e-3, 44, 44, 82000, 0.3, 0, -6.25e-4, 0.625},
+  };
+  const double shear_modulus = 82e9, poisson_ratio = 0.28;
+  const fastnorm::Material<> material(2 * shear_modulus * (1 + poisson_ratio), poisson_ratio);
+  for (const Problem& problem : problems) {
+    const fastnorm::Grid<> grid(problem.mx, problem.my, problem.dx, problem.dy,
+                                -static_cast<double>(problem.mx - 1) * problem.dx / 2,
+                                -static_cast<double>(problem.my - 1) * problem.dy / 2);
+    Eigen::VectorXd h(grid.size());
+    for (Eigen::Index k = 0; k < grid.size(); ++k) {
+      const double x = grid.x(grid.i_of(k)), y = grid.y(grid.j_of(k));
+      h(k) = problem.a1 * x * x + problem.b1 * y * y;
+    }
+    const auto normal =
+        fastnorm::NormSolver<>(grid, material).solve(h, fastnorm::Loading<>::force(problem.normal_force));
+    fastnorm::Creepage<> creepage;
+    creepage.longitudinal = problem.xi;
+    creepage.lateral = problem.eta;
+    creepage.spin = problem.phi;
+    std::vector<double> times;
+    fastnorm::TangentialSolution<> answer;
+    for (int r = 0; r < repeats; ++r) {
+      const auto start = std::chrono::steady_clock::now();
+      answer = fastnorm::solve_steady_rolling(grid, material, normal, problem.friction, creepage);
+      times.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+    }
+    std::sort(times.begin(), times.end());
+    std::printf("tangential case=%s elements=%ld ncontact=%ld xi=%g eta=%g phi=%g solve_ms=%.2f sweeps=%d nadh=%ld "
+                "nslip=%ld fx=%.1f fy=%.1f mz=%.4f\n",
+                problem.name, static_cast<long>(grid.size()), static_cast<long>(normal.in_contact.count()), problem.xi,
+                problem.eta, problem.phi, times[times.size() / 2] * 1e3, answer.sweeps,
+                static_cast<long>(answer.adhesion_elements), static_cast<long>(answer.slip_elements), answer.force_x,
+                answer.force_y, answer.spin_moment);
+  }
+}
+
+}  // namespace fastnorm_bench

@@ -1,0 +1,233 @@
+// Steady rolling with friction (tangential_solver.hpp, docs/tangential.md §8): against
+// CONTACT's exact results on Hertzian cases, saturation, and the problem's symmetries.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <fastnorm/norm_solver.hpp>
+#include <fastnorm/tangential_solver.hpp>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "support/peer_cases.hpp"
+
+using Catch::Matchers::Contains;
+
+namespace {
+
+/// A Hertzian problem as CONTACT's module 3 poses it: h = A1 x² + B1 y² on an mx × my grid
+/// centred on the origin, normal force Fn, one material.
+struct HertzProblem {
+  fastnorm::Grid<> grid;
+  fastnorm::Material<> material;
+  fastnorm::Solution<> normal;
+};
+
+HertzProblem hertz_problem(double a1, double b1, Eigen::Index mx, Eigen::Index my, double dx, double dy,
+                           double shear_modulus, double poisson_ratio, double normal_force) {
+  const fastnorm::Grid<> grid(mx, my, dx, dy, -static_cast<double>(mx - 1) * dx / 2,
+                              -static_cast<double>(my - 1) * dy / 2);
+  const fastnorm::Material<> material(2 * shear_modulus * (1 + poisson_ratio), poisson_ratio);
+  Eigen::VectorXd h(grid.size());
+  for (Eigen::Index k = 0; k < grid.size(); ++k) {
+    const double x = grid.x(grid.i_of(k)), y = grid.y(grid.j_of(k));
+    h(k) = a1 * x * x + b1 * y * y;
+  }
+  auto normal = fastnorm::NormSolver<>(grid, material).solve(h, fastnorm::Loading<>::force(normal_force));
+  REQUIRE(normal.ok());
+  return {grid, material, std::move(normal)};
+}
+
+/// A small problem for the property tests: CONTACT's tractcurv ellipse (a/b = 0.5) on a
+/// 24 × 22 grid, steel-like, 106.7 kN.
+const HertzProblem& small_problem() {
+  static const HertzProblem problem = hertz_problem(0.8, 0.2814, 24, 22, 0.5778e-3, 1.2608e-3, 8.2e10, 0.28, 106700);
+  return problem;
+}
+
+fastnorm::Creepage<> creepage(double xi, double eta, double phi) {
+  fastnorm::Creepage<> value;
+  value.longitudinal = xi;
+  value.lateral = eta;
+  value.spin = phi;
+  return value;
+}
+
+/// The rows of ../shared/peer-tangential/hertz.tsv as column name → text.
+std::vector<std::map<std::string, std::string>> peer_rows() {
+  std::vector<std::map<std::string, std::string>> rows;
+  const std::string path = fastnorm::test::peer_tangential_file();
+  if (path.empty()) return rows;
+  std::ifstream in(path);
+  std::string line;
+  std::vector<std::string> columns;
+  while (std::getline(in, line)) {
+    if (line.empty() || line[0] == '#') continue;
+    std::vector<std::string> fields;
+    std::stringstream stream(line);
+    for (std::string field; std::getline(stream, field, '\t');) fields.push_back(field);
+    if (columns.empty()) {
+      columns = fields;
+      continue;
+    }
+    std::map<std::string, std::string> row;
+    for (std::size_t c = 0; c < columns.size() && c < fields.size(); ++c) row[columns[c]] = fields[c];
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+double number(const std::map<std::string, std::string>& row, const std::string& column) {
+  return std::stod(row.at(column));
+}
+
+/// Solves a peer row (CONTACT's mm, N, rad/mm converted to SI) and checks forces within
+/// `force_tolerance`·μFn and the spin moment within `moment_tolerance`·μFn·c, c = √(ab).
+void check_peer_row(const std::map<std::string, std::string>& row, double force_tolerance, double moment_tolerance) {
+  const double mm = 1e-3;
+  const HertzProblem problem =
+      hertz_problem(number(row, "a1_per_mm") / mm, number(row, "b1_per_mm") / mm, std::stol(row.at("mx")),
+                    std::stol(row.at("my")), number(row, "dx_mm") * mm, number(row, "dy_mm") * mm,
+                    number(row, "g_MPa") * 1e6, number(row, "nu"), number(row, "fn_N"));
+  REQUIRE(number(row, "chi_rad") == 0);  // the peer rows roll towards +x
+  const double mu = number(row, "mu"), fn = number(row, "fn_N");
+  const auto answer = fastnorm::solve_steady_rolling(
+      problem.grid, problem.material, problem.normal, mu,
+      creepage(number(row, "cksi"), number(row, "ceta"), number(row, "cphi_per_mm") / mm));
+  REQUIRE(answer.ok());
+  const double c = std::sqrt(number(row, "aa_mm") * number(row, "bb_mm")) * mm;
+  INFO(row.at("source") << " case " << row.at("case") << ": Fx " << answer.force_x << " (CONTACT " << row.at("fx_N")
+                        << "), Fy " << answer.force_y << " (" << row.at("fs_N") << "), Mz " << answer.spin_moment
+                        << " N m (" << number(row, "mn_Nmm") * mm << "), adhesion " << answer.adhesion_elements << " ("
+                        << row.at("nadh") << "), slip " << answer.slip_elements << " (" << row.at("nslip")
+                        << "), sweeps " << answer.sweeps);
+  CHECK(std::abs(answer.force_x - number(row, "fx_N")) <= force_tolerance * mu * fn);
+  CHECK(std::abs(answer.force_y - number(row, "fs_N")) <= force_tolerance * mu * fn);
+  CHECK(std::abs(answer.spin_moment - number(row, "mn_Nmm") * mm) <= moment_tolerance * mu * fn * c);
+  // Same normal solution, same discretisation: the areas agree to a few elements.
+  const double contact = number(row, "ncon");
+  CHECK(std::abs(static_cast<double>(answer.adhesion_elements) - number(row, "nadh")) <= 0.005 * contact);
+  CHECK(std::abs(static_cast<double>(answer.slip_elements) - number(row, "nslip")) <= 0.005 * contact);
+}
+
+std::vector<std::map<std::string, std::string>> exact_rows(const std::string& source) {
+  std::vector<std::map<std::string, std::string>> selected;
+  for (const auto& row : peer_rows()) {
+    if (row.at("source") == source && row.at("variant") == "exact") selected.push_back(row);
+  }
+  return selected;
+}
+
+}  // namespace
+
+TEST_CASE("Steady rolling gives CONTACT's exact large-spin case", "[tangential][peer]") {
+  const auto rows = exact_rows("fastsim");
+  if (rows.empty()) return fastnorm::test::reference_data_missing("peer-tangential/hertz.tsv");
+  REQUIRE(rows.size() == 1);
+  check_peer_row(rows.front(), 0.015, 0.02);
+}
+
+TEST_CASE("Steady rolling gives CONTACT's exact creep curve, across partial slip", "[tangential][peer]") {
+  const auto rows = exact_rows("tractcurv");
+  if (rows.empty()) return fastnorm::test::reference_data_missing("peer-tangential/hertz.tsv");
+  REQUIRE(rows.size() == 30);
+  // Full adhesion, a quarter, half and most of the area sliding, just saturated, far past.
+  for (const int index : {0, 1, 2, 4, 7, 9, 18}) check_peer_row(rows[static_cast<std::size_t>(index)], 0.015, 0.02);
+}
+
+TEST_CASE("Steady rolling gives CONTACT's whole exact creep curve", "[tangential][peer][large]") {
+  const auto rows = exact_rows("tractcurv");
+  if (rows.empty()) return fastnorm::test::reference_data_missing("peer-tangential/hertz.tsv");
+  for (const auto& row : rows) check_peer_row(row, 0.015, 0.02);
+}
+
+TEST_CASE("Large creepage saturates the traction bound against the rigid slip", "[tangential]") {
+  const auto& problem = small_problem();
+  const double mu = 0.3, fn = problem.normal.normal_force;
+  for (const auto& [xi, eta] : std::vector<std::pair<double, double>>{{0.1, 0.0}, {0.06, -0.08}}) {
+    const auto answer = fastnorm::solve_steady_rolling(problem.grid, problem.material, problem.normal, mu,
+                                                       creepage(xi, eta, 0.0));
+    REQUIRE(answer.ok());
+    const double magnitude = std::hypot(answer.force_x, answer.force_y);
+    INFO("creepage (" << xi << ", " << eta << "): |F|/(mu Fn) = " << magnitude / (mu * fn) << ", slip elements "
+                      << answer.slip_elements << " of " << answer.slip_elements + answer.adhesion_elements);
+    CHECK(answer.adhesion_elements == 0);
+    CHECK(magnitude <= mu * fn * (1 + 1e-12));
+    CHECK(magnitude >= 0.995 * mu * fn);
+    // The force on body 1 opposes its rigid slip: F ≈ −μ Fn w/|w|.
+    CHECK(answer.force_x / magnitude == Approx(-xi / std::hypot(xi, eta)).margin(2e-3));
+    CHECK(answer.force_y / magnitude == Approx(-eta / std::hypot(xi, eta)).margin(2e-3));
+    CHECK(answer.frictional_power_per_speed > 0);
+  }
+}
+
+TEST_CASE("Steady rolling keeps the problem's symmetries", "[tangential]") {
+  const auto& problem = small_problem();
+  const double mu = 0.3, scale = mu * problem.normal.normal_force, c = 5e-3;
+  const auto solve = [&](const fastnorm::Creepage<>& value, fastnorm::RollingDirection direction) {
+    auto answer = fastnorm::solve_steady_rolling(problem.grid, problem.material, problem.normal, mu, value, direction);
+    REQUIRE(answer.ok());
+    return answer;
+  };
+  const auto positive = fastnorm::RollingDirection::positive_x, negative = fastnorm::RollingDirection::negative_x;
+  const auto base = solve(creepage(4e-4, -3e-4, 0.4), positive);
+  INFO("base: Fx " << base.force_x << " Fy " << base.force_y << " Mz " << base.spin_moment << " sweeps " << base.sweeps);
+  REQUIRE(base.slip_elements > 0);
+  REQUIRE(base.adhesion_elements > 0);
+  SECTION("left/right mirror: (xi, -eta, -phi) gives (Fx, -Fy, -Mz)") {
+    const auto mirrored = solve(creepage(4e-4, 3e-4, -0.4), positive);
+    CHECK(mirrored.force_x == Approx(base.force_x).margin(1e-6 * scale));
+    CHECK(mirrored.force_y == Approx(-base.force_y).margin(1e-6 * scale));
+    CHECK(mirrored.spin_moment == Approx(-base.spin_moment).margin(1e-6 * scale * c));
+    CHECK(mirrored.adhesion_elements == base.adhesion_elements);
+  }
+  SECTION("reversed rolling direction: (-xi, eta, -phi) rolling towards -x gives (-Fx, Fy, -Mz)") {
+    const auto reversed = solve(creepage(-4e-4, -3e-4, -0.4), negative);
+    CHECK(reversed.force_x == Approx(-base.force_x).margin(1e-6 * scale));
+    CHECK(reversed.force_y == Approx(base.force_y).margin(1e-6 * scale));
+    CHECK(reversed.spin_moment == Approx(-base.spin_moment).margin(1e-6 * scale * c));
+    CHECK(reversed.adhesion_elements == base.adhesion_elements);
+  }
+  SECTION("moving the spin centre with xi and eta transformed changes nothing") {
+    // w = (xi - phi (y - y0), eta + phi (x - x0)): y0 += dy needs xi -= phi dy, x0 += dx needs eta += phi dx.
+    auto moved = creepage(4e-4 - 0.4 * 2e-3, -3e-4 + 0.4 * -1e-3, 0.4);
+    moved.spin_centre_x = -1e-3;
+    moved.spin_centre_y = 2e-3;
+    const auto answer = solve(moved, positive);
+    CHECK(answer.force_x == Approx(base.force_x).margin(1e-6 * scale));
+    CHECK(answer.force_y == Approx(base.force_y).margin(1e-6 * scale));
+    CHECK(answer.spin_moment == Approx(base.spin_moment).margin(1e-6 * scale * c));
+  }
+  SECTION("continuity in the creepages") {
+    const auto nearby = solve(creepage(4e-4 * (1 + 1e-4), -3e-4, 0.4), positive);
+    CHECK(std::abs(nearby.force_x - base.force_x) <= 1e-3 * scale);
+    CHECK(std::abs(nearby.force_y - base.force_y) <= 1e-3 * scale);
+  }
+}
+
+TEST_CASE("Steady rolling refuses bad input by name", "[tangential]") {
+  const auto& problem = small_problem();
+  const auto solve = [&](double mu, const fastnorm::Creepage<>& value) {
+    return fastnorm::solve_steady_rolling(problem.grid, problem.material, problem.normal, mu, value);
+  };
+  CHECK_THROWS_WITH(solve(0.0, creepage(1e-3, 0, 0)), Contains("friction"));
+  CHECK_THROWS_WITH(solve(std::nan(""), creepage(1e-3, 0, 0)), Contains("friction"));
+  CHECK_THROWS_WITH(solve(0.3, creepage(std::nan(""), 0, 0)), Contains("creepage"));
+  const fastnorm::Grid<> other(5, 5, 1e-3, 1e-3);
+  CHECK_THROWS_WITH(fastnorm::solve_steady_rolling(other, problem.material, problem.normal, 0.3, creepage(1e-3, 0, 0)),
+                    Contains("normal"));
+  fastnorm::TangentialOptions<> options;
+  options.tolerance = 0;
+  CHECK_THROWS_WITH(fastnorm::solve_steady_rolling(problem.grid, problem.material, problem.normal, 0.3,
+                                                   creepage(1e-3, 0, 0), fastnorm::RollingDirection::positive_x,
+                                                   options),
+                    Contains("tolerance"));
+  // A contact area in the grid's upstream column: the slip there needs one more element.
+  const HertzProblem touching = hertz_problem(0.8, 0.2814, 8, 10, 1.6e-3, 2.6e-3, 8.2e10, 0.28, 106700);
+  REQUIRE(touching.normal.in_contact(touching.grid.mx() - 1 + touching.grid.mx() * 5));
+  CHECK_THROWS_WITH(fastnorm::solve_steady_rolling(touching.grid, touching.material, touching.normal, 0.3,
+                                                   creepage(1e-3, 0, 0)),
+                    Contains("upstream edge"));
+}
