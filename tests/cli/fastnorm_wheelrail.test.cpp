@@ -211,3 +211,50 @@ TEST_CASE("fastnorm-wheelrail takes the Manchester benchmark's radius and materi
   REQUIRE(wide.status == 0);
   CHECK(field(wide.output, "y_track") == Approx(field(by_shear.output, "y_track") + 5).margin(0.01));
 }
+
+TEST_CASE("fastnorm-wheelrail --friction gives each patch its creep forces", "[cli][wheelrail][tangential]") {
+  // Full sliding (ξ = 0.1): every element slips and the force on the rail is −μ Fn along x.
+  const auto sliding = run_wheelrail("--y 3 --elements 30 --friction 0.3 --creepage-x 0.1");
+  REQUIRE(sliding.status == 0);
+  std::istringstream lines(sliding.output);
+  std::string line;
+  std::getline(lines, line);  // the '#' line
+  int patches = 0;
+  while (std::getline(lines, line)) {
+    ++patches;
+    INFO(line);
+    const double limit = 0.3 * field(line, "fn");
+    CHECK_THAT(line, Contains("tangential=converged"));
+    CHECK(field(line, "nadh") == 0);
+    CHECK(field(line, "fx") == Approx(-limit).epsilon(1e-4));
+    CHECK(std::abs(field(line, "fs")) <= 1e-4 * limit);
+  }
+  CHECK(patches == 2);
+
+  // Centred (y = 0), the right patch is the left one mirrored in s (which points to +y_track
+  // on both wheels): the left patch's (fx, fs, mn) at (ξ, η, φ) are the right patch's
+  // (fx, −fs, −mn) at (ξ, −η, −φ), to the printed digits; in partial slip.
+  const auto forward = run_wheelrail("--y 0 --elements 30 --friction 0.3 --creepage-x 1e-3 --creepage-y 5e-4 --spin 0.5");
+  const auto mirrored =
+      run_wheelrail("--y 0 --elements 30 --friction 0.3 --creepage-x 1e-3 --creepage-y -5e-4 --spin -0.5");
+  REQUIRE(forward.status == 0);
+  REQUIRE(mirrored.status == 0);
+  const auto patch_line = [](const std::string& output, const std::string& wheel) {
+    const auto at = output.find("wheel=" + wheel + " patch=1 ");
+    REQUIRE(at != std::string::npos);
+    return output.substr(at, output.find('\n', at) - at);
+  };
+  const std::string left = patch_line(forward.output, "left"), right = patch_line(mirrored.output, "right");
+  INFO(left << "\n" << right);
+  CHECK(field(left, "nadh") > 0);
+  CHECK(field(left, "nslip") > 0);
+  CHECK(std::hypot(field(left, "fx"), field(left, "fs")) < 0.3 * field(left, "fn"));
+  CHECK(field(right, "fx") == Approx(field(left, "fx")).epsilon(1e-5));
+  CHECK(field(right, "fs") == Approx(-field(left, "fs")).epsilon(1e-5));
+  CHECK(field(right, "mn") == Approx(-field(left, "mn")).epsilon(1e-5));
+  CHECK(field(right, "nadh") == field(left, "nadh"));
+
+  const auto without_friction = run_wheelrail("--creepage-x 1e-3");
+  CHECK(without_friction.status == 2);
+  CHECK_THAT(without_friction.output, Contains("--creepage-x needs --friction"));
+}
