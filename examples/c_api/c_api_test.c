@@ -2,7 +2,8 @@
  * agrees with CONTACT's stored solution as the C++ tests require (force 1e-7, pressures 1e-6
  * of the peak, the same contact count); a .case written and read back is unchanged; the
  * sequence call gives the cold answer; bad input returns FASTNORM_ERROR_ARGUMENT with a
- * message naming the argument; the wheelset model's equilibrium carries its load.
+ * message naming the argument; the wheelset model's equilibrium carries its load; steady
+ * rolling gives CONTACT's creep forces on its large-spin Hertz example.
  * Usage: fastnorm_c_api_test PEER_CASE_FILE SCRATCH_DIR */
 #include <math.h>
 #include <stdio.h>
@@ -239,6 +240,49 @@ static void wheelset_equilibrium_and_time_step(void) {
   fastnorm_wheelset_destroy(model);
 }
 
+/* CONTACT's large-spin Hertz example (docs/tangential.md §5): NORM in force control, then
+ * steady rolling; CONTACT's exact answer is Fs = -14940 N, Mz = -48.21 N m, 356 elements in
+ * adhesion and 920 in slip. */
+static void steady_rolling_meets_contact(void) {
+  const fastnorm_grid grid = {44, 44, 0.4e-3, 0.2e-3, -43 * 0.4e-3 / 2, -43 * 0.2e-3 / 2};
+  const fastnorm_material material = {2 * 82e9 * 1.28, 0.28, 2 * 82e9 * 1.28, 0.28};
+  const int size = grid.mx * grid.my;
+  double* h = malloc(sizeof(double) * (size_t)size);
+  double* pressure = malloc(sizeof(double) * (size_t)size);
+  double* traction_x = malloc(sizeof(double) * (size_t)size);
+  double* traction_y = malloc(sizeof(double) * (size_t)size);
+  for (int k = 0; k < size; ++k) {
+    const double x = grid.x0 + grid.dx * (k % grid.mx), y = grid.y0 + grid.dy * (k / grid.mx);
+    h[k] = 0.8464 * x * x + 2.406 * y * y;
+  }
+  fastnorm_solver* norm = NULL;
+  fastnorm_result normal;
+  REQUIRE_OK(fastnorm_solver_create("norm", &grid, &material, NULL, &norm));
+  REQUIRE_OK(fastnorm_solve_force(norm, h, 82e3, pressure, &normal));
+  fastnorm_solver_destroy(norm);
+  const fastnorm_creepage creepage = {0, -6.25e-4, 0.625, 0, 0};
+  fastnorm_tangential_result rolling;
+  REQUIRE_OK(fastnorm_steady_rolling(&grid, &material, pressure, 0.3, &creepage, 1, traction_x, traction_y, &rolling));
+  const double mu_fn = 0.3 * 82e3;
+  EXPECT(rolling.status == FASTNORM_CONVERGED);
+  EXPECT(fabs(rolling.force_y + 14940) <= 0.015 * mu_fn);
+  EXPECT(fabs(rolling.spin_moment + 48.21) <= 0.02 * mu_fn * sqrt(8e-3 * 4e-3));
+  EXPECT(rolling.adhesion_elements == 356 && rolling.slip_elements == 920);
+  double sum = 0;
+  for (int k = 0; k < size; ++k) sum += traction_y[k] * grid.dx * grid.dy;
+  EXPECT(fabs(sum - rolling.force_y) <= 1e-9 * mu_fn);
+  expect_error(fastnorm_steady_rolling(&grid, &material, pressure, -0.3, &creepage, 1, traction_x, traction_y, &rolling),
+               "friction");
+  expect_error(fastnorm_steady_rolling(&grid, &material, pressure, 0.3, &creepage, 0, traction_x, traction_y, &rolling),
+               "rolling");
+  expect_error(fastnorm_steady_rolling(&grid, &material, pressure, 0.3, NULL, 1, traction_x, traction_y, &rolling),
+               "creepage");
+  free(h);
+  free(pressure);
+  free(traction_x);
+  free(traction_y);
+}
+
 int main(int argc, char** argv) {
   if (argc != 3) {
     fprintf(stderr, "usage: %s PEER_CASE_FILE SCRATCH_DIR\n", argv[0]);
@@ -254,6 +298,7 @@ int main(int argc, char** argv) {
   peer_case_through_the_api(argv[1], argv[2]);
   bad_input_is_named();
   wheelset_equilibrium_and_time_step();
+  steady_rolling_meets_contact();
   if (failures) fprintf(stderr, "%d checks failed\n", failures);
   return failures ? 1 : 0;
 }

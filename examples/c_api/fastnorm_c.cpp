@@ -5,6 +5,7 @@
 
 #include <fastnorm/any_solver.hpp>
 #include <fastnorm/case_file.hpp>
+#include <fastnorm/tangential_solver.hpp>
 #include <fastnorm/version.hpp>
 #include <fastnorm/wheelrail.hpp>
 
@@ -227,6 +228,46 @@ int fastnorm_normal_stiffness(fastnorm_solver* solver, double* stiffness) {
     require_pointer(stiffness, "stiffness");
     FASTNORM_CHECK(solver->last_next.status != fastnorm::Status::not_solved, "no solve_next to take the stiffness of");
     *stiffness = solver->solver.normal_stiffness(solver->last_next, solver->solver.workspace());
+  });
+}
+
+int fastnorm_steady_rolling(const fastnorm_grid* grid, const fastnorm_material* material, const double* pressure,
+                            double friction, const fastnorm_creepage* creepage, int rolling, double* traction_x,
+                            double* traction_y, fastnorm_tangential_result* result) {
+  return guarded("fastnorm_steady_rolling", [&] {
+    for (const auto& [pointer, name] : {std::pair<const void*, const char*>{pressure, "pressure"},
+                                        {creepage, "creepage"}, {traction_x, "traction_x"},
+                                        {traction_y, "traction_y"}, {result, "result"}}) {
+      require_pointer(pointer, name);
+    }
+    FASTNORM_CHECK(rolling == 1 || rolling == -1, "rolling must be +1 or -1, not " + std::to_string(rolling));
+    const auto grid_value = grid_of(grid);
+    // The normal answer as the solver reads it: pressures, and contact where they are positive.
+    fastnorm::Solution<double> normal;
+    normal.pressure = Eigen::Map<const Eigen::VectorXd>(pressure, grid_value.size());
+    FASTNORM_CHECK(normal.pressure.allFinite(), "pressure must be finite");
+    normal.in_contact = normal.pressure.array() > 0;
+    normal.status = normal.in_contact.any() ? fastnorm::Status::converged : fastnorm::Status::no_contact;
+    fastnorm::Creepage<double> value;
+    value.longitudinal = creepage->longitudinal;
+    value.lateral = creepage->lateral;
+    value.spin = creepage->spin;
+    value.spin_centre_x = creepage->spin_centre_x;
+    value.spin_centre_y = creepage->spin_centre_y;
+    const auto answer = fastnorm::solve_steady_rolling(
+        grid_value, material_of(material), normal, friction, value,
+        rolling == 1 ? fastnorm::RollingDirection::positive_x : fastnorm::RollingDirection::negative_x);
+    Eigen::Map<Eigen::VectorXd>(traction_x, grid_value.size()) = answer.traction_x;
+    Eigen::Map<Eigen::VectorXd>(traction_y, grid_value.size()) = answer.traction_y;
+    *result = fastnorm_tangential_result{static_cast<int>(answer.status),
+                                         answer.sweeps,
+                                         static_cast<int>(answer.adhesion_elements),
+                                         static_cast<int>(answer.slip_elements),
+                                         answer.force_x,
+                                         answer.force_y,
+                                         answer.spin_moment,
+                                         answer.frictional_power_per_speed,
+                                         answer.residual};
   });
 }
 

@@ -103,6 +103,33 @@ FASTNORM_C_API int fastnorm_solve_next(fastnorm_solver* solver, const double* h,
 /* dFn/d(approach) (N/m) at the contact set of the handle's last solve_next. */
 FASTNORM_C_API int fastnorm_normal_stiffness(fastnorm_solver* solver, double* stiffness);
 
+/* Creepages of the rail (body 1) against the wheel, CONTACT's definition: the rigid slip is
+ * (xi - phi (y - y0), eta + phi (x - x0)) (docs/tangential.md §5). */
+typedef struct fastnorm_creepage {
+  double longitudinal;              /* xi */
+  double lateral;                   /* eta */
+  double spin;                      /* phi (rad/m) */
+  double spin_centre_x, spin_centre_y; /* (x0, y0) in the grid's coordinates (m) */
+} fastnorm_creepage;
+/* What a steady-rolling solve returns besides the tractions. */
+typedef struct fastnorm_tangential_result {
+  int status;                 /* FASTNORM_CONVERGED, FASTNORM_ITERATION_LIMIT, FASTNORM_NO_CONTACT */
+  int sweeps;                 /* Gauss-Seidel sweeps */
+  int adhesion_elements, slip_elements;
+  double force_x, force_y;    /* on the rail (N); a positive xi gives a negative force_x */
+  double spin_moment;         /* sum dA (x p_y - y p_x) about the grid's origin (N m) */
+  double frictional_power_per_speed; /* sum dA |p||s| over the slip area (N); times the speed: W */
+  double residual;            /* the last sweep's largest traction change / (mu max p_n) */
+} fastnorm_tangential_result;
+/* Steady rolling with Coulomb friction (mu > 0) on the normal pressures `pressure` (Pa, the
+ * contact area where they are positive, as a solve wrote them) of a grid and material;
+ * rolling: +1 the contact moves towards +x (CONTACT's chi = 0), -1 towards -x. Writes the
+ * tractions on the rail (Pa) into traction_x and traction_y (grid-sized). */
+FASTNORM_C_API int fastnorm_steady_rolling(const fastnorm_grid* grid, const fastnorm_material* material,
+                                           const double* pressure, double friction, const fastnorm_creepage* creepage,
+                                           int rolling, double* traction_x, double* traction_y,
+                                           fastnorm_tangential_result* result);
+
 /* .case files (docs/case-format.md). */
 typedef struct fastnorm_case fastnorm_case;
 

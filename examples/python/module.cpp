@@ -10,11 +10,13 @@
 
 #include <fastnorm/any_solver.hpp>
 #include <fastnorm/case_file.hpp>
+#include <fastnorm/tangential_solver.hpp>
 #include <fastnorm/version.hpp>
 #include <fastnorm/wheelrail.hpp>
 
 
 #include <algorithm>
+#include <cstdint>
 #include <array>
 #include <cmath>
 #include <mutex>
@@ -79,6 +81,7 @@ struct PySolution {
   Eigen::Index contact_count = 0;
   bool at_edge = false;
   bool ok = false;
+  Solution solution;  // the C++ answer, for the tangential solve
 };
 
 PySolution to_python(const Grid& grid, const Solution& solution) {
@@ -94,6 +97,52 @@ PySolution to_python(const Grid& grid, const Solution& solution) {
   out.contact_count = solution.contact_count();
   out.at_edge = solution.at_edge;
   out.ok = solution.ok();
+  out.solution = solution;
+  return out;
+}
+
+// A steady-rolling answer as Python holds it (tangential_solver.hpp, docs/tangential.md).
+struct PyTangentialSolution {
+  std::string status, message;
+  bool ok = false;
+  py::array_t<double> traction_x, traction_y;  // Pa on the rail, (my, mx)
+  py::array_t<std::int8_t> state;              // 0 exterior, 1 adhesion, 2 slip, (my, mx)
+  double force_x = 0, force_y = 0, spin_moment = 0, frictional_power_per_speed = 0, residual = 0;
+  Eigen::Index adhesion_elements = 0, slip_elements = 0;
+  int sweeps = 0;
+};
+
+PyTangentialSolution solve_steady_rolling(const Grid& grid, const Material& material, const PySolution& normal,
+                                          double friction, double creepage_x, double creepage_y, double spin,
+                                          const std::string& rolling) {
+  FASTNORM_CHECK(rolling == "+x" || rolling == "-x", "rolling must be '+x' or '-x', not '" + rolling + "'");
+  fastnorm::Creepage<double> creepage;
+  creepage.longitudinal = creepage_x;
+  creepage.lateral = creepage_y;
+  creepage.spin = spin;
+  const auto direction = rolling == "+x" ? fastnorm::RollingDirection::positive_x : fastnorm::RollingDirection::negative_x;
+  fastnorm::TangentialSolution<double> answer;
+  {
+    py::gil_scoped_release release;
+    answer = fastnorm::solve_steady_rolling(grid, material, normal.solution, friction, creepage, direction);
+  }
+  PyTangentialSolution out;
+  out.status = fastnorm::to_string(answer.status);
+  out.message = answer.message;
+  out.ok = answer.ok();
+  out.traction_x = map_of<double>(grid, answer.traction_x);
+  out.traction_y = map_of<double>(grid, answer.traction_y);
+  Eigen::Matrix<std::int8_t, Eigen::Dynamic, 1> state(answer.state.size());
+  for (Eigen::Index k = 0; k < state.size(); ++k) state(k) = static_cast<std::int8_t>(answer.state(k));
+  out.state = map_of<std::int8_t>(grid, state);
+  out.force_x = answer.force_x;
+  out.force_y = answer.force_y;
+  out.spin_moment = answer.spin_moment;
+  out.frictional_power_per_speed = answer.frictional_power_per_speed;
+  out.residual = answer.residual;
+  out.adhesion_elements = answer.adhesion_elements;
+  out.slip_elements = answer.slip_elements;
+  out.sweeps = answer.sweeps;
   return out;
 }
 
@@ -450,6 +499,38 @@ void bind_basics(py::module_& m) {
       });
 }
 
+void bind_tangential(py::module_& m) {
+  py::class_<PyTangentialSolution>(m, "TangentialSolution",
+                                   "Steady rolling's answer: tractions and forces on the rail (body 1), docs/tangential.md.")
+      .def_readonly("status", &PyTangentialSolution::status, "'converged' or 'iteration limit' ('no contact')")
+      .def_readonly("message", &PyTangentialSolution::message)
+      .def_readonly("ok", &PyTangentialSolution::ok, "converged")
+      .def_readonly("traction_x_pa", &PyTangentialSolution::traction_x, "tractions along x (Pa), shape (my, mx)")
+      .def_readonly("traction_y_pa", &PyTangentialSolution::traction_y, "tractions along y (Pa), shape (my, mx)")
+      .def_readonly("state", &PyTangentialSolution::state, "0 exterior, 1 adhesion, 2 slip; int8, shape (my, mx)")
+      .def_readonly("force_x_n", &PyTangentialSolution::force_x, "Fx (N): positive creepage_x gives a negative Fx")
+      .def_readonly("force_y_n", &PyTangentialSolution::force_y, "Fy (N)")
+      .def_readonly("spin_moment_nm", &PyTangentialSolution::spin_moment,
+                    "Mz = sum dA (x p_y - y p_x) about the grid's origin (N m)")
+      .def_readonly("frictional_power_per_speed_n", &PyTangentialSolution::frictional_power_per_speed,
+                    "sum dA |p||s| over the slip area (N); times the rolling speed (m/s): W")
+      .def_readonly("adhesion_elements", &PyTangentialSolution::adhesion_elements)
+      .def_readonly("slip_elements", &PyTangentialSolution::slip_elements)
+      .def_readonly("sweeps", &PyTangentialSolution::sweeps)
+      .def_readonly("residual", &PyTangentialSolution::residual)
+      .def("__repr__", [](const PyTangentialSolution& s) {
+        return "TangentialSolution(status='" + s.status + "', force_x_n=" + number(s.force_x) +
+               ", force_y_n=" + number(s.force_y) + ", spin_moment_nm=" + number(s.spin_moment) +
+               ", adhesion_elements=" + std::to_string(s.adhesion_elements) +
+               ", slip_elements=" + std::to_string(s.slip_elements) + ")";
+      });
+  m.def("solve_steady_rolling", &solve_steady_rolling, "grid"_a, "material"_a, "normal"_a, py::kw_only(),
+        "friction"_a, "creepage_x"_a = 0.0, "creepage_y"_a = 0.0, "spin_per_m"_a = 0.0, "rolling"_a = "+x",
+        "Steady rolling with Coulomb friction on the normal solution `normal` (a Solution on `grid`), CONTACT's "
+        "conventions: creepages of the rail (body 1) against the wheel, rigid slip (xi - phi y, eta + phi x), "
+        "rolling towards '+x' or '-x' (docs/tangential.md).");
+}
+
 void bind_case_files(py::module_& m) {
   py::class_<fastnorm::CaseResult<double>>(m, "CaseResult", "The solution part a .case file stores.")
       .def_readonly("normal_force_n", &fastnorm::CaseResult<double>::normal_force)
@@ -667,6 +748,7 @@ PYBIND11_MODULE(_fastnorm, m) {
   m.attr("__version__") = version();
   py::register_exception<fastnorm::invalid_argument>(m, "FastnormError", PyExc_ValueError);
   bind_basics(m);
+  bind_tangential(m);
   bind_case_files(m);
   bind_wheelset(m);
 }

@@ -26,11 +26,13 @@ from ._fastnorm import (
     Solution,
     Solver,
     StepStatus,
+    TangentialSolution,
     Wheel,
     WheelsetContact,
     WheelsetResult,
     __version__,
     read_case,
+    solve_steady_rolling,
     write_case,
 )
 
@@ -46,12 +48,14 @@ __all__ = [
     "Solution",
     "Solver",
     "StepStatus",
+    "TangentialSolution",
     "Wheel",
     "WheelsetContact",
     "WheelsetResult",
     "__version__",
     "read_case",
     "solve_case",
+    "solve_steady_rolling",
     "write_case",
 ]
 
