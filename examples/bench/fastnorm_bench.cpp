@@ -11,7 +11,7 @@
 //     sequence=<name> solver=<s> calls=<n> per_call_s=<t> cold_per_call_s=<t> speedup_warm=<x>
 //   fastnorm-bench --growth [--sizes 30,60,120,240,480,960] [--repeats 3]
 //   fastnorm-bench --trajectory [--steps 2000] [--trajectory-solvers norm,cg,elliptic,elliptic+warm,...]: trajectory.hpp
-//   fastnorm-bench --tangential [--repeats 5]: steady rolling on CONTACT's Hertz examples, tangential.hpp
+//   fastnorm-bench --tangential [--repeats 5] [CASE...]: steady rolling on CONTACT's Hertz examples or the cases, tangential.hpp
 //     growth=hertz_<n>x<n> elements=<N> ncontact=<n> norm_s=<t> cg_s=<t> cg_iterations=<k>
 //          cg_mb=<m> elliptic_s=<t> polynomial4_s=<t> max_rss_mb=<m>
 //
@@ -261,7 +261,7 @@ fastnorm_example::CommandLine command_line(Arguments& a) {
   line.option("--sizes", a.sizes, "N,...", "--growth: elements across each grid", at_least(4));
   line.flag("--trajectory", a.trajectory, "time the wheelset contact model along the 1 kHz trajectory instead");
   line.option("--steps", a.steps, "N", "--trajectory: time steps (1 ms each)", at_least(3));
-  line.flag("--tangential", a.tangential, "time the steady-rolling solver on CONTACT's Hertz examples instead");
+  line.flag("--tangential", a.tangential, "time the steady-rolling solver on CONTACT's Hertz examples (or on the CASEs) instead");
   line.option("--trajectory-solvers", a.trajectory_solvers, "NAME,...", "--trajectory: the solvers, NORM first anyway; NAME+warm, NAME+cold: a reduced solver started warm or cold whatever its default (both: compared step by step)");
   return line;
 }
@@ -272,7 +272,8 @@ int run(const Arguments& a) {
     return 0;
   }
   if (a.tangential) {
-    fastnorm_bench::bench_tangential(a.repeats);
+    if (a.cases.empty()) fastnorm_bench::bench_tangential(a.repeats);
+    fastnorm_bench::bench_tangential_cases(a.cases, a.repeats);
     return 0;
   }
   std::vector<std::string> extra_solvers;

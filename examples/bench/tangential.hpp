@@ -9,6 +9,12 @@
 //   tangential case=<name> elements=<N> ncontact=<n> xi=<x> eta=<x> phi=<x> solve_ms=<median>
 //     sweeps=<k> nadh=<n> nslip=<n> fx=<N> fy=<N> mz=<N m>
 //
+// With .case files (e.g. CONTACT's wheel–rail patches in ../shared/peer-cases), each case's
+// normal problem as stored, then steady rolling with μ = 0.3 at ξ = 1e-3, η = 5e-4 and
+// φ = 0.5 rad/m (partial slip on those patches), rolling towards +x:
+//
+//   tangential case=<file name> elements=<N> ncontact=<n> ... (the same fields)
+//
 // The normal problem is solved once by NORM and the solver's tables built once; the time is
 // the median over --repeats solves of the tangential problem, one thread.
 #pragma once
@@ -19,9 +25,43 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <string>
 #include <vector>
 
 namespace fastnorm_bench {
+
+/// Times `repeats` solves of one steady-rolling problem and prints its line.
+inline void time_steady_rolling(const std::string& name, const fastnorm::Grid<>& grid, const fastnorm::Material<>& material,
+                                const fastnorm::Solution<>& normal, double friction,
+                                const fastnorm::Creepage<>& creepage, int repeats) {
+  const fastnorm::SteadyRollingSolver<> rolling(grid, material);
+  std::vector<double> times;
+  fastnorm::TangentialSolution<> answer;
+  for (int r = 0; r < repeats; ++r) {
+    const auto start = std::chrono::steady_clock::now();
+    answer = rolling.solve(normal, friction, creepage);
+    times.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+  }
+  std::sort(times.begin(), times.end());
+  std::printf("tangential case=%s elements=%ld ncontact=%ld xi=%g eta=%g phi=%g solve_ms=%.2f sweeps=%d nadh=%ld "
+              "nslip=%ld fx=%.1f fy=%.1f mz=%.4f\n",
+              name.c_str(), static_cast<long>(grid.size()), static_cast<long>(normal.in_contact.count()),
+              creepage.longitudinal, creepage.lateral, creepage.spin, times[times.size() / 2] * 1e3, answer.sweeps,
+              static_cast<long>(answer.adhesion_elements), static_cast<long>(answer.slip_elements), answer.force_x,
+              answer.force_y, answer.spin_moment);
+}
+
+inline void bench_tangential_cases(const std::vector<std::string>& paths, int repeats) {
+  for (const auto& path : paths) {
+    const auto stored = fastnorm::read_case_file(path);
+    const auto normal = fastnorm::NormSolver<>(stored.grid, stored.material).solve(stored.undeformed_distance, stored.loading);
+    fastnorm::Creepage<> creepage;
+    creepage.longitudinal = 1e-3;
+    creepage.lateral = 5e-4;
+    creepage.spin = 0.5;
+    time_steady_rolling(stored.name, stored.grid, stored.material, normal, 0.3, creepage, repeats);
+  }
+}
 
 inline void bench_tangential(int repeats) {
   struct Problem {
@@ -54,21 +94,7 @@ inline void bench_tangential(int repeats) {
     creepage.longitudinal = problem.xi;
     creepage.lateral = problem.eta;
     creepage.spin = problem.phi;
-    const fastnorm::SteadyRollingSolver<> rolling(grid, material);
-    std::vector<double> times;
-    fastnorm::TangentialSolution<> answer;
-    for (int r = 0; r < repeats; ++r) {
-      const auto start = std::chrono::steady_clock::now();
-      answer = rolling.solve(normal, problem.friction, creepage);
-      times.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
-    }
-    std::sort(times.begin(), times.end());
-    std::printf("tangential case=%s elements=%ld ncontact=%ld xi=%g eta=%g phi=%g solve_ms=%.2f sweeps=%d nadh=%ld "
-                "nslip=%ld fx=%.1f fy=%.1f mz=%.4f\n",
-                problem.name, static_cast<long>(grid.size()), static_cast<long>(normal.in_contact.count()), problem.xi,
-                problem.eta, problem.phi, times[times.size() / 2] * 1e3, answer.sweeps,
-                static_cast<long>(answer.adhesion_elements), static_cast<long>(answer.slip_elements), answer.force_x,
-                answer.force_y, answer.spin_moment);
+    time_steady_rolling(problem.name, grid, material, normal, problem.friction, creepage, repeats);
   }
 }
 
