@@ -115,6 +115,38 @@ struct RollingOperator {
   }
 };
 
+/// One element's traction under Coulomb's law when its slip is s = r + (k_x p_x, k_y p_y)
+/// (docs/tangential.md §7): adhesion p = −r/k if that is within the bound g (s = 0), else
+/// slip p = −g s/|s|, i.e. p_c = −g r_c/(σ + g k_c) with σ = |s| the root of
+/// Σ_c r_c²/(σ + g k_c)² = 1, convex and decreasing in σ, so that Newton's method from σ = 0
+/// climbs to it monotonically.
+template <typename Scalar>
+struct ElementTraction {
+  Scalar x, y;
+  TractionState state;
+};
+
+template <typename Scalar>
+ElementTraction<Scalar> coulomb_element(Scalar rx, Scalar ry, Scalar bound, Scalar kx, Scalar ky) {
+  const Scalar adhesion_x = -rx / kx, adhesion_y = -ry / ky;
+  if (adhesion_x * adhesion_x + adhesion_y * adhesion_y <= bound * bound) {
+    return {adhesion_x, adhesion_y, TractionState::adhesion};
+  }
+  Scalar sigma = 0;
+  for (int newton = 0; newton < 100; ++newton) {
+    const Scalar ex = sigma + bound * kx, ey = sigma + bound * ky;
+    const Scalar excess = rx * rx / (ex * ex) + ry * ry / (ey * ey) - 1;
+    const Scalar derivative = -2 * (rx * rx / (ex * ex * ex) + ry * ry / (ey * ey * ey));
+    const Scalar next = sigma - excess / derivative;
+    if (!(next > sigma) || next - sigma <= std::numeric_limits<Scalar>::epsilon() * next) {
+      sigma = std::max(sigma, next);
+      break;
+    }
+    sigma = next;
+  }
+  return {-bound * rx / (sigma + bound * kx), -bound * ry / (sigma + bound * ky), TractionState::slip};
+}
+
 }  // namespace detail
 
 /// Steady rolling with Coulomb friction on the patches of one grid: the solver keeps the
@@ -261,33 +293,12 @@ class SteadyRollingSolver {
           // The slip is s = r + local·p, r the rest with this element's traction taken out.
           const Scalar px = answer.traction_x(k), py = answer.traction_y(k);
           const Scalar rx = rigid_x(k) + elastic_x(k) - local_x * px, ry = rigid_y(k) + elastic_y(k) - local_y * py;
-          Scalar new_x = -rx / local_x, new_y = -ry / local_y;  // adhesion: s = 0
-          const Scalar g = bound(k);
-          if (new_x * new_x + new_y * new_y <= g * g) {
-            answer.state(k) = TractionState::adhesion;
-          } else {
-            // Slip: p = −g s/|s|, so s_c = r_c σ/(σ + g·local_c) with σ = |s| the root of
-            // Σ r_c²/(σ + g·local_c)² = 1: convex and decreasing, Newton from σ = 0 climbs to it.
-            Scalar sigma = 0;
-            for (int newton = 0; newton < 100; ++newton) {
-              const Scalar ex = sigma + g * local_x, ey = sigma + g * local_y;
-              const Scalar f = rx * rx / (ex * ex) + ry * ry / (ey * ey) - 1;
-              const Scalar derivative = -2 * (rx * rx / (ex * ex * ex) + ry * ry / (ey * ey * ey));
-              const Scalar next = sigma - f / derivative;
-              if (!(next > sigma) || next - sigma <= std::numeric_limits<Scalar>::epsilon() * next) {
-                sigma = std::max(sigma, next);
-                break;
-              }
-              sigma = next;
-            }
-            new_x = -g * rx / (sigma + g * local_x);
-            new_y = -g * ry / (sigma + g * local_y);
-            answer.state(k) = TractionState::slip;
-          }
-          const Scalar change_x = new_x - px, change_y = new_y - py;
+          const auto local = detail::coulomb_element(rx, ry, bound(k), local_x, local_y);
+          answer.state(k) = local.state;
+          const Scalar change_x = local.x - px, change_y = local.y - py;
           if (change_x != 0 || change_y != 0) {
-            answer.traction_x(k) = new_x;
-            answer.traction_y(k) = new_y;
+            answer.traction_x(k) = local.x;
+            answer.traction_y(k) = local.y;
             add_change(k, change_x, change_y);
             largest_change = std::max(largest_change, std::max(std::abs(change_x), std::abs(change_y)));
           }

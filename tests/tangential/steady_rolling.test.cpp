@@ -268,3 +268,29 @@ TEST_CASE("Steady rolling refuses bad input by name", "[tangential]") {
                                                    creepage(1e-3, 0, 0)),
                     Contains("upstream edge"));
 }
+
+TEST_CASE("An element's Coulomb problem is solved exactly", "[tangential]") {
+  // s = r + k p: adhesion (s = 0, |p| <= g) or slip (|p| = g, p = -g s/|s|), whichever holds.
+  int slipping = 0;
+  for (int sample = 0; sample < 200; ++sample) {
+    const double angle = 0.1 * sample, size = 0.02 * (1 + sample % 13);
+    const double rx = size * std::cos(angle), ry = size * std::sin(angle);
+    const double kx = 1 + 0.1 * (sample % 7), ky = 1 + 0.3 * (sample % 5), bound = 0.05;
+    const auto p = fastnorm::detail::coulomb_element(rx, ry, bound, kx, ky);
+    const double sx = rx + kx * p.x, sy = ry + ky * p.y, slip = std::hypot(sx, sy);
+    INFO("r = (" << rx << ", " << ry << "), k = (" << kx << ", " << ky << ")");
+    if (p.state == fastnorm::TractionState::adhesion) {
+      CHECK(slip <= 1e-15);
+      CHECK(std::hypot(p.x, p.y) <= bound);
+    } else {
+      ++slipping;
+      CHECK(std::hypot(p.x, p.y) == Approx(bound).epsilon(1e-12));
+      CHECK(p.x == Approx(-bound * sx / slip).margin(1e-12 * bound));
+      CHECK(p.y == Approx(-bound * sy / slip).margin(1e-12 * bound));
+      // Adhesion would have exceeded the bound.
+      CHECK(std::hypot(rx / kx, ry / ky) > bound);
+    }
+  }
+  CHECK(slipping > 20);
+  CHECK(slipping < 180);
+}
