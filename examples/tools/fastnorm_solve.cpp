@@ -1,6 +1,7 @@
 // fastnorm-solve: solves a .case file and compares with the result it carries.
 //
 //   fastnorm-solve CASE [--solver NAME] [--control approach|force] [--compare]
+//                  [--friction MU [--creepage-x XI] [--creepage-y ETA] [--spin PHI]]
 //                  [--write-case OUT] [--quiet] [--help]
 //
 // NAME: norm (default) | cg | elliptic | polynomial[:G] | elliptic-edge[:K] | polynomial-edge[:G[:K]].
@@ -8,12 +9,16 @@
 // the same line, when the case carries a result, by `ref_fn=<N> rel_fn_diff=<x>
 // max_abs_dp_over_pmax=<x> contact_mismatch=<n>`, and with --compare by
 // `rel_fn_err_vs_norm=<x> contact_mismatch_vs_norm=<n> max_dp_over_pmax_vs_norm=<x>
-// speedup_vs_norm=<x>` (full NORM on the same case and control). Exit status: 0 solved,
+// speedup_vs_norm=<x>` (full NORM on the same case and control), and with --friction by the
+// steady-rolling answer on the solution, `fx=<N> fs=<N> mn=<N m> nadh=<n> nslip=<n> sweeps=<k>
+// tangential=<status>` (docs/tangential.md: forces on body 1, creepages of body 1 against
+// body 2, rolling towards +x, mn about the grid's origin). Exit status: 0 solved,
 // 1 the solver gave no usable answer, 2 bad input (the message names the file, line or
 // argument; nothing written).
 #include <fastnorm/fastnorm.hpp>
 
 #include <chrono>
+#include <cstdio>
 #include <fstream>
 #include <iostream>
 #include <string>
@@ -21,6 +26,7 @@
 #include <vector>
 
 #include "support/arguments.hpp"
+#include "support/tangential_arguments.hpp"
 
 namespace {
 
@@ -33,6 +39,7 @@ struct Arguments {
   std::string write_path;
   bool quiet = false;
   bool compare = false;
+  fastnorm_example::TangentialArguments tangential;
 };
 
 fastnorm_example::CommandLine command_line(Arguments& a) {
@@ -45,6 +52,7 @@ fastnorm_example::CommandLine command_line(Arguments& a) {
   line.flag("--compare", a.compare, "also solve with full NORM and print the differences and the speed-up");
   line.option("--write-case", a.write_path, "FILE", "write the case with this solution to FILE");
   line.flag("--quiet", a.quiet, "print the result line only");
+  a.tangential.add_to(line, "y");
   return line;
 }
 
@@ -101,6 +109,11 @@ int run(const Arguments& arguments) {
               << " max_dp_over_pmax_vs_norm=" << max_difference_over_peak(solution.pressure, norm.pressure)
               << " speedup_vs_norm=" << norm_seconds / seconds;
   }
+  if (arguments.tangential.wanted() && solution.ok()) {
+    std::cout.flush();  // the tangential fields are printed by printf
+    arguments.tangential.solve_and_print(problem.grid, problem.material, solution);
+    std::fflush(stdout);
+  }
   std::cout << '\n';
 
   if (!arguments.write_path.empty()) {
@@ -125,5 +138,8 @@ int run(const Arguments& arguments) {
 int main(int argc, char** argv) {
   Arguments arguments;
   auto line = command_line(arguments);
-  return fastnorm_example::run_tool(line, argc, argv, [&] { return run(arguments); });
+  return fastnorm_example::run_tool(line, argc, argv, [&] {
+    arguments.tangential.check(line);
+    return run(arguments);
+  });
 }

@@ -29,7 +29,8 @@
 // interpenetration; stiffness = dFn/dδ at the final contact set; at_edge = 1 when contact
 // reaches the grid's boundary), plus rel_fn_err_vs_norm=<x> with --compare (full NORM on the
 // same patch), and with --friction the steady-rolling creep forces of the patch
-// (docs/tangential.md §5): fx=<N> fs=<N> mn=<N m> nadh=<n> nslip=<n>, forces on the rail in
+// (docs/tangential.md §5): fx=<N> fs=<N> mn=<N m> nadh=<n> nslip=<n> sweeps=<k>
+// tangential=<status>, forces on the rail in
 // the patch frame (x forward along the track, s towards +y_track on both wheels, n into the
 // rail), mn about the patch reference point, for the creepages of the rail against the wheel
 // given in that frame (CONTACT's definition: a positive --creepage-x gives a negative fx;
@@ -48,6 +49,7 @@
 #include <vector>
 
 #include "support/arguments.hpp"
+#include "support/tangential_arguments.hpp"
 #include "svg.hpp"
 
 namespace {
@@ -68,7 +70,7 @@ struct Arguments {
   double radius_mm = 450, gauge_mm = 1435;
   double young_gpa = 210, poisson = 0.3, shear_gpa = 0;  // --shear instead of --young
   double rail_young_gpa = 0, rail_poisson = 0;           // the rail's, when given
-  double friction = 0, creepage_x = 0, creepage_y = 0, spin = 0;  // friction 0: no tangential problem
+  fastnorm_example::TangentialArguments tangential;
 };
 
 fastnorm_example::CommandLine command_line(Arguments& a) {
@@ -107,12 +109,7 @@ fastnorm_example::CommandLine command_line(Arguments& a) {
   line.option("--rail-poisson", a.rail_poisson, "", "the rail's Poisson's ratio, if not the wheel's", within(0, 0.5));
   line.option("--write-case", a.case_prefix, "PREFIX", "write PREFIX_<wheel>_<k>.case per patch");
   line.option("--svg", a.svg_prefix, "PREFIX", "draw PREFIX_<wheel>_<k>.svg per patch");
-  line.option("--friction", a.friction, "MU", "also solve steady rolling with this friction coefficient: fx fs mn per patch",
-              strictly_within(0, 10));
-  line.option("--creepage-x", a.creepage_x, "XI", "longitudinal creepage of the rail against the wheel (--friction)",
-              within(-1, 1));
-  line.option("--creepage-y", a.creepage_y, "ETA", "lateral creepage, along the patch's s (--friction)", within(-1, 1));
-  line.option("--spin", a.spin, "PHI", "spin creepage, rad/m (--friction)", within(-1000, 1000));
+  a.tangential.add_to(line, "the patch's s (body 1 the rail)");
   return line;
 }
 
@@ -130,9 +127,7 @@ void check_mode(const fastnorm_example::CommandLine& line, const Arguments& a) {
     throw UsageError("--roll applies to the single-wheel mode (--fz, --wheel) and to --z only");
   }
   if (line.given("--young") && line.given("--shear")) throw UsageError("--young and --shear exclude each other");
-  for (const char* creepage : {"--creepage-x", "--creepage-y", "--spin"}) {
-    if (line.given(creepage) && !line.given("--friction")) throw UsageError(std::string(creepage) + " needs --friction MU");
-  }
+  a.tangential.check(line);
 }
 
 // Wheel (body 1) and rail (body 2) from --young or --shear, --poisson and the rail's own.
@@ -258,16 +253,7 @@ void report_patches(const Arguments& a, const fastnorm::SolverSpec<double>& solv
                  .solve(patch.undeformed_distance, fastnorm::Loading<double>::approach());
     }
     if (a.compare) std::printf(" rel_fn_err_vs_norm=%.3e", solution.normal_force / norm.normal_force - 1);
-    if (a.friction > 0 && solution.ok()) {
-      fastnorm::Creepage<double> creepage;
-      creepage.longitudinal = a.creepage_x;
-      creepage.lateral = a.creepage_y;
-      creepage.spin = a.spin;
-      const auto rolling = fastnorm::SteadyRollingSolver<double>(patch.grid, material).solve(solution, a.friction, creepage);
-      std::printf(" fx=%.6g fs=%.6g mn=%.6g nadh=%ld nslip=%ld tangential=%s", rolling.force_x, rolling.force_y,
-                  rolling.spin_moment, static_cast<long>(rolling.adhesion_elements),
-                  static_cast<long>(rolling.slip_elements), fastnorm::to_string(rolling.status));
-    }
+    if (a.tangential.wanted() && solution.ok()) a.tangential.solve_and_print(patch.grid, material, solution);
     std::printf("\n");
     const std::string title = wheel + std::string(" wheel, patch ") + std::to_string(k);
     const std::string stem = std::string("_") + wheel + "_" + std::to_string(k);

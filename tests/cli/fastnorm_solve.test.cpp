@@ -172,3 +172,29 @@ TEST_CASE("fastnorm-solve reproduces a CONTACT peer case", "[cli][peer]") {
   CHECK(field(outcome.output, "max_abs_dp_over_pmax") < 1e-6);
   CHECK(field(outcome.output, "contact_mismatch") == 0);
 }
+
+TEST_CASE("fastnorm-solve --friction adds the steady-rolling creep forces", "[cli][tangential]") {
+  // A sphere rolling towards +x: at ξ = 0.1 every element slides and Fx = −μ Fn; Coulomb's
+  // law is odd, so −ξ gives the opposite forces and the same areas.
+  const fs::path input = write_sphere_case(scratch());
+  const auto sliding = run_solver(input.string() + " --quiet --friction 0.3 --creepage-x 0.1");
+  REQUIRE(sliding.status == 0);
+  INFO(sliding.output);
+  CHECK_THAT(sliding.output, Contains("tangential=converged"));
+  CHECK(field(sliding.output, "nadh") == 0);
+  CHECK(field(sliding.output, "fx") == Approx(-0.3 * field(sliding.output, "fn")).epsilon(1e-5));
+  const auto forward = run_solver(input.string() + " --quiet --friction 0.3 --creepage-x 1e-3 --creepage-y 4e-4");
+  const auto backward = run_solver(input.string() + " --quiet --friction 0.3 --creepage-x -1e-3 --creepage-y -4e-4");
+  REQUIRE(forward.status == 0);
+  REQUIRE(backward.status == 0);
+  INFO(forward.output << backward.output);
+  CHECK(field(forward.output, "nadh") > 0);
+  CHECK(field(forward.output, "nslip") > 0);
+  CHECK(field(forward.output, "fx") < 0);
+  CHECK(field(backward.output, "fx") == Approx(-field(forward.output, "fx")).epsilon(1e-5));
+  CHECK(field(backward.output, "fs") == Approx(-field(forward.output, "fs")).epsilon(1e-5));
+  CHECK(field(backward.output, "nadh") == field(forward.output, "nadh"));
+  const auto without_friction = run_solver(input.string() + " --spin 0.5");
+  CHECK(without_friction.status == 2);
+  CHECK_THAT(without_friction.output, Contains("--spin needs --friction"));
+}

@@ -1,0 +1,62 @@
+// The steady-rolling options of the command-line tools (fastnorm-solve, fastnorm-wheelrail):
+// --friction MU [--creepage-x XI] [--creepage-y ETA] [--spin PHI], and the fields a tool
+// prints for a patch's answer (docs/tangential.md §5).
+#pragma once
+
+#include <fastnorm/tangential_solver.hpp>
+
+#include <cstdio>
+#include <string>
+
+#include "support/arguments.hpp"
+
+namespace fastnorm_example {
+
+struct TangentialArguments {
+  double friction = 0;  // 0: no tangential problem
+  double creepage_x = 0, creepage_y = 0, spin = 0;
+
+  /// Adds the four options; `lateral` says what y is in this tool.
+  void add_to(CommandLine& line, const std::string& lateral) {
+    line.option("--friction", friction, "MU",
+                "also solve steady rolling with this friction coefficient (rolling towards +x): fx fs mn per patch",
+                strictly_within(0, 10));
+    line.option("--creepage-x", creepage_x, "XI", "longitudinal creepage of body 1 against body 2 (--friction)",
+                within(-1, 1));
+    line.option("--creepage-y", creepage_y, "ETA", "lateral creepage, along " + lateral + " (--friction)",
+                within(-1, 1));
+    line.option("--spin", spin, "PHI", "spin creepage, rad/m, about the grid's origin (--friction)",
+                within(-1000, 1000));
+  }
+
+  /// The creepages without --friction are a usage error.
+  void check(const CommandLine& line) const {
+    for (const char* creepage : {"--creepage-x", "--creepage-y", "--spin"}) {
+      if (line.given(creepage) && !line.given("--friction")) {
+        throw UsageError(std::string(creepage) + " needs --friction MU");
+      }
+    }
+  }
+
+  bool wanted() const { return friction > 0; }
+
+  fastnorm::Creepage<double> creepage() const {
+    fastnorm::Creepage<double> value;
+    value.longitudinal = creepage_x;
+    value.lateral = creepage_y;
+    value.spin = spin;
+    return value;
+  }
+
+  /// Steady rolling on `normal` (a solution on `grid`), printed as
+  /// ` fx=<N> fs=<N> mn=<N m> nadh=<n> nslip=<n> sweeps=<k> tangential=<status>`.
+  void solve_and_print(const fastnorm::Grid<double>& grid, const fastnorm::Material<double>& material,
+                       const fastnorm::Solution<double>& normal) const {
+    const auto answer = fastnorm::SteadyRollingSolver<double>(grid, material).solve(normal, friction, creepage());
+    std::printf(" fx=%.6g fs=%.6g mn=%.6g nadh=%ld nslip=%ld sweeps=%d tangential=%s", answer.force_x, answer.force_y,
+                answer.spin_moment, static_cast<long>(answer.adhesion_elements),
+                static_cast<long>(answer.slip_elements), answer.sweeps, fastnorm::to_string(answer.status));
+  }
+};
+
+}  // namespace fastnorm_example
