@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "fastnorm/detail/memory_check.hpp"
 #include "fastnorm/error.hpp"
 #include "fastnorm/grid.hpp"
 #include "fastnorm/material.hpp"
@@ -90,7 +91,7 @@ struct RollingOperator {
 
   RollingOperator(const TangentialInfluenceTable<Scalar>& influence, RollingDirection direction)
       : mx(influence.grid().mx()),
-        my(influence.grid().my()),
+        my(checked_rows(influence.grid())),
         xx(2 * mx - 1, 2 * my - 1),
         xy(2 * mx - 1, 2 * my - 1),
         yy(2 * mx - 1, 2 * my - 1) {
@@ -112,6 +113,14 @@ struct RollingOperator {
         yy(mx - 1 + di, my - 1 + dj) = (here.yy - there.yy) / grid.dx();
       }
     }
+  }
+
+ private:
+  /// my, once the three tables are known to fit the machine's memory.
+  static Eigen::Index checked_rows(const Grid<Scalar>& grid) {
+    check_memory(3 * (2 * static_cast<double>(grid.mx()) - 1) * (2 * static_cast<double>(grid.my()) - 1), sizeof(Scalar),
+                 "SteadyRollingSolver: grid mx x my");
+    return grid.my();
   }
 };
 
