@@ -43,6 +43,16 @@ module fastnorm_c
     real(c_double) :: tolerance
   end type
 
+  ! Creepages of the rail (body 1) against the wheel: xi, eta, phi (rad/m), spin centre (m).
+  type, bind(c) :: fastnorm_creepage
+    real(c_double) :: longitudinal, lateral, spin, spin_centre_x, spin_centre_y
+  end type
+
+  type, bind(c) :: fastnorm_tangential_result
+    integer(c_int) :: status, sweeps, adhesion_elements, slip_elements
+    real(c_double) :: force_x, force_y, spin_moment, frictional_power_per_speed, residual
+  end type
+
   type, bind(c) :: fastnorm_wheelset_options
     type(c_ptr) :: solver, wheel_profile, rail_profile  ! C strings (c_loc of a null-terminated string)
     real(c_double) :: nominal_radius, gauge, cant
@@ -124,6 +134,18 @@ module fastnorm_c
       import :: c_int, c_ptr, c_double
       type(c_ptr), value :: solver
       real(c_double), intent(out) :: stiffness
+    end function
+    integer(c_int) function fastnorm_steady_rolling(grid, material, pressure, friction, creepage, rolling, &
+                                                     traction_x, traction_y, result) bind(c)
+      import :: c_int, c_double, fastnorm_grid, fastnorm_material, fastnorm_creepage, fastnorm_tangential_result
+      type(fastnorm_grid), intent(in) :: grid
+      type(fastnorm_material), intent(in) :: material
+      real(c_double), intent(in) :: pressure(*)
+      real(c_double), value :: friction
+      type(fastnorm_creepage), intent(in) :: creepage
+      integer(c_int), value :: rolling
+      real(c_double), intent(out) :: traction_x(*), traction_y(*)
+      type(fastnorm_tangential_result), intent(out) :: result
     end function
 
     integer(c_int) function fastnorm_case_read(path, problem) bind(c)

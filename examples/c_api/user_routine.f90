@@ -2,7 +2,8 @@
 ! calling fastnorm's C API through the module fastnorm_c (fastnorm_c.f90, shipped with the
 ! C library; docs/bindings.md). The program finds the
 ! static equilibrium of a wheelset under 200 kN at y = 3 mm, then steps it through a small
-! lateral oscillation calling the user routine at every step, as an integrator would.
+! lateral oscillation calling the user routine at every step, as an integrator would; and
+! the creep forces of CONTACT's large-spin Hertz example by steady rolling.
 ! Run as a CTest test: it stops with an error when a call fails or a force is implausible.
 module wheel_rail_contact
   use fastnorm_c
@@ -63,4 +64,44 @@ program user_routine
       force(2), " N, Fz = ", force(3), " N"
   end do
   call fastnorm_wheelset_destroy(model)
+  call creep_forces_of_a_hertz_contact()
+
+contains
+
+  ! CONTACT's large-spin Hertz example (docs/tangential.md §5): NORM in force control, then
+  ! steady rolling; CONTACT's exact answer is Fs = -14940 N, Mz = -48.21 N m, 356 elements in
+  ! adhesion and 920 in slip.
+  subroutine creep_forces_of_a_hertz_contact()
+    integer, parameter :: n = 44
+    type(fastnorm_grid) :: grid
+    type(fastnorm_material) :: material
+    type(fastnorm_result) :: normal
+    type(fastnorm_tangential_result) :: rolling
+    type(c_ptr) :: norm
+    real(c_double) :: h(n * n), pressure(n * n), traction_x(n * n), traction_y(n * n), x, yl
+    character(kind=c_char, len=5), target :: norm_name = "norm" // c_null_char
+    integer :: i, j
+    grid = fastnorm_grid(n, n, 0.4d-3, 0.2d-3, -(n - 1) * 0.4d-3 / 2, -(n - 1) * 0.2d-3 / 2)
+    material = fastnorm_material(2 * 82d9 * 1.28d0, 0.28d0, 2 * 82d9 * 1.28d0, 0.28d0)
+    do j = 0, n - 1
+      do i = 0, n - 1
+        x = grid%x0 + grid%dx * i
+        yl = grid%y0 + grid%dy * j
+        h(1 + i + n * j) = 0.8464d0 * x * x + 2.406d0 * yl * yl
+      end do
+    end do
+    if (fastnorm_solver_create(norm_name, grid, material, c_null_ptr, norm) /= fastnorm_ok) &
+      error stop "solver: " // fastnorm_string(fastnorm_last_error())
+    if (fastnorm_solve_force(norm, h, 82.0d3, pressure, normal) /= fastnorm_ok) &
+      error stop "normal: " // fastnorm_string(fastnorm_last_error())
+    call fastnorm_solver_destroy(norm)
+    if (fastnorm_steady_rolling(grid, material, pressure, 0.3d0, fastnorm_creepage(0d0, -6.25d-4, 0.625d0, 0d0, 0d0), &
+                                1_c_int, traction_x, traction_y, rolling) /= fastnorm_ok) &
+      error stop "steady rolling: " // fastnorm_string(fastnorm_last_error())
+    print '(a, es12.5, a, es12.5, a, i4, a, i4)', "steady rolling: Fs = ", rolling%force_y, " N, Mz = ", &
+      rolling%spin_moment, " N m, adhesion ", rolling%adhesion_elements, ", slip ", rolling%slip_elements
+    if (abs(rolling%force_y + 14940) > 0.015d0 * 0.3d0 * 82d3) error stop "Fs is not CONTACT's"
+    if (rolling%adhesion_elements /= 356 .or. rolling%slip_elements /= 920) error stop "areas are not CONTACT's"
+  end subroutine
+
 end program user_routine
