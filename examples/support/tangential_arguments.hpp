@@ -48,14 +48,16 @@ struct TangentialArguments {
     return value;
   }
 
-  /// Steady rolling on `normal` (a solution on `grid`), printed as
-  /// ` fx=<N> fs=<N> mn=<N m> nadh=<n> nslip=<n> sweeps=<k> tangential=<status>`.
-  void solve_and_print(const fastnorm::Grid<double>& grid, const fastnorm::Material<double>& material,
-                       const fastnorm::Solution<double>& normal) const {
+  /// Steady rolling on `normal` (a solution on `grid`), as the fields a tool appends to
+  /// its line: ` fx=<N> fs=<N> mn=<N m> nadh=<n> nslip=<n> sweeps=<k> tangential=<status>`.
+  std::string solve_fields(const fastnorm::Grid<double>& grid, const fastnorm::Material<double>& material,
+                           const fastnorm::Solution<double>& normal) const {
     const auto answer = fastnorm::SteadyRollingSolver<double>(grid, material).solve(normal, friction, creepage());
-    std::printf(" fx=%.6g fs=%.6g mn=%.6g nadh=%ld nslip=%ld sweeps=%d tangential=%s", answer.force_x, answer.force_y,
-                answer.spin_moment, static_cast<long>(answer.adhesion_elements),
-                static_cast<long>(answer.slip_elements), answer.sweeps, fastnorm::to_string(answer.status));
+    char text[256];
+    std::snprintf(text, sizeof text, " fx=%.6g fs=%.6g mn=%.6g nadh=%ld nslip=%ld sweeps=%d tangential=%s",
+                  answer.force_x, answer.force_y, answer.spin_moment, static_cast<long>(answer.adhesion_elements),
+                  static_cast<long>(answer.slip_elements), answer.sweeps, fastnorm::to_string(answer.status));
+    return text;
   }
 };
 

@@ -18,7 +18,6 @@
 #include <fastnorm/fastnorm.hpp>
 
 #include <chrono>
-#include <cstdio>
 #include <fstream>
 #include <iostream>
 #include <string>
@@ -110,9 +109,7 @@ int run(const Arguments& arguments) {
               << " speedup_vs_norm=" << norm_seconds / seconds;
   }
   if (arguments.tangential.wanted() && solution.ok()) {
-    std::cout.flush();  // the tangential fields are printed by printf
-    arguments.tangential.solve_and_print(problem.grid, problem.material, solution);
-    std::fflush(stdout);
+    std::cout << arguments.tangential.solve_fields(problem.grid, problem.material, solution);
   }
   std::cout << '\n';
 

@@ -30,11 +30,11 @@
 // reaches the grid's boundary), plus rel_fn_err_vs_norm=<x> with --compare (full NORM on the
 // same patch), and with --friction the steady-rolling creep forces of the patch
 // (docs/tangential.md §5): fx=<N> fs=<N> mn=<N m> nadh=<n> nslip=<n> sweeps=<k>
-// tangential=<status>, forces on the rail in
-// the patch frame (x forward along the track, s towards +y_track on both wheels, n into the
-// rail), mn about the patch reference point, for the creepages of the rail against the wheel
-// given in that frame (CONTACT's definition: a positive --creepage-x gives a negative fx;
-// --spin in rad/m), the wheelset rolling forward. A first line starting with '#' states the pose and status. --write-case writes
+// tangential=<status>, forces on the rail in the patch frame (x forward along the track, s
+// towards +y_track on both wheels, n into the rail), mn about the patch reference point, for
+// the creepages of the rail against the wheel given in that frame (CONTACT's definition: a
+// positive --creepage-x gives a negative fx; --spin in rad/m), the wheelset rolling forward.
+// A first line starting with '#' states the pose and status. --write-case writes
 // PREFIX_<wheel>_<k>.case (h, approach control, solution); --svg writes PREFIX_<wheel>_<k>.svg
 // (pressure map; contact outlines of NORM and of the chosen solver).
 // Exit status: 0 equilibrium found, 1 not found or at flange climb (status on the '#' line;
@@ -253,7 +253,9 @@ void report_patches(const Arguments& a, const fastnorm::SolverSpec<double>& solv
                  .solve(patch.undeformed_distance, fastnorm::Loading<double>::approach());
     }
     if (a.compare) std::printf(" rel_fn_err_vs_norm=%.3e", solution.normal_force / norm.normal_force - 1);
-    if (a.tangential.wanted() && solution.ok()) a.tangential.solve_and_print(patch.grid, material, solution);
+    if (a.tangential.wanted() && solution.ok()) {
+      std::printf("%s", a.tangential.solve_fields(patch.grid, material, solution).c_str());
+    }
     std::printf("\n");
     const std::string title = wheel + std::string(" wheel, patch ") + std::to_string(k);
     const std::string stem = std::string("_") + wheel + "_" + std::to_string(k);

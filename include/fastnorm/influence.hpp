@@ -36,6 +36,13 @@ Work love_primitive(Work X, Work Y) {
   return value;
 }
 
+/// The double difference F(x+a, y+b) − F(x−a, y+b) − F(x+a, y−b) + F(x−a, y−b): the integral
+/// of ∂²F/∂X∂Y over the rectangle [x−a, x+a] × [y−b, y+b] (docs/kernel.md Eq. (K1)).
+template <typename Work, typename Primitive>
+Work over_rectangle(Work x, Work y, Work a, Work b, const Primitive& primitive) {
+  return primitive(x + a, y + b) - primitive(x - a, y + b) - primitive(x + a, y - b) + primitive(x - a, y - b);
+}
+
 }  // namespace detail
 
 /// Normal surface displacement (m) of both bodies together at offset (x, y) (m) from
@@ -49,8 +56,7 @@ template <typename Scalar>
 Scalar love_coefficient(Scalar x, Scalar y, Scalar a, Scalar b, Scalar combined_modulus) {
   using Work = detail::KernelWork<Scalar>;
   const Work xw = static_cast<Work>(x), yw = static_cast<Work>(y), aw = static_cast<Work>(a), bw = static_cast<Work>(b);
-  const Work sum = detail::love_primitive(xw + aw, yw + bw) - detail::love_primitive(xw - aw, yw + bw) -
-                   detail::love_primitive(xw + aw, yw - bw) + detail::love_primitive(xw - aw, yw - bw);
+  const Work sum = detail::over_rectangle(xw, yw, aw, bw, [](Work X, Work Y) { return detail::love_primitive(X, Y); });
   return static_cast<Scalar>(sum / (pi<Work> * Work(combined_modulus)));
 }
 

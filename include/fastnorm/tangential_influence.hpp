@@ -35,13 +35,6 @@ Work lateral_primitive(Work X, Work Y) {
   return X != 0 ? X * std::asinh(Y / std::abs(X)) : Work(0);
 }
 
-/// The double difference F(x+a, y+b) − F(x−a, y+b) − F(x+a, y−b) + F(x−a, y−b): the integral
-/// of ∂²F/∂X∂Y over the rectangle [x−a, x+a] × [y−b, y+b].
-template <typename Work, typename Primitive>
-Work over_rectangle(Work x, Work y, Work a, Work b, const Primitive& primitive) {
-  return primitive(x + a, y + b) - primitive(x - a, y + b) - primitive(x + a, y - b) + primitive(x - a, y - b);
-}
-
 }  // namespace detail
 
 /// Tangential displacement differences (m) at offset (x, y) (m) from the centre of a

@@ -207,8 +207,6 @@ class SteadyRollingSolver {
                                    const Creepage<Scalar>& creepage) const {
     const Grid<Scalar>& grid = influence_->grid();
     const detail::RollingOperator<Scalar>& rolling = *rolling_;
-    const RollingDirection direction = direction_;
-    const TangentialOptions<Scalar>& options = options_;
     const Index mx = grid.mx(), my = grid.my(), n = grid.size();
     FASTNORM_CHECK(normal.pressure.size() == n && normal.in_contact.size() == n,
                    detail::describe("SteadyRollingSolver::solve: normal must be a solution on this grid (elements)",
@@ -221,7 +219,7 @@ class SteadyRollingSolver {
     FASTNORM_CHECK(std::isfinite(creepage.longitudinal) && std::isfinite(creepage.lateral) && std::isfinite(creepage.spin) &&
                        std::isfinite(creepage.spin_centre_x) && std::isfinite(creepage.spin_centre_y),
                    "SteadyRollingSolver::solve: creepage must be finite (longitudinal, lateral, spin, spin centre)");
-    const bool positive = direction == RollingDirection::positive_x;
+    const bool positive = direction_ == RollingDirection::positive_x;
     const Index upstream_column = positive ? mx - 1 : 0;
 
     TangentialSolution<Scalar> answer;
@@ -290,7 +288,7 @@ class SteadyRollingSolver {
     Scalar smallest_change = std::numeric_limits<Scalar>::infinity();
     answer.sweeps = 0;
     bool converged = false;
-    while (answer.sweeps < options.max_sweeps && !converged) {
+    while (answer.sweeps < options_.max_sweeps && !converged) {
       ++answer.sweeps;
       const Scalar local_x = relaxation * own.xx / grid.dx(), local_y = relaxation * own.yy / grid.dx();
       Scalar largest_change = 0;
@@ -314,7 +312,7 @@ class SteadyRollingSolver {
         }
       }
       answer.residual = largest_change / scale;
-      converged = answer.residual <= options.tolerance;
+      converged = answer.residual <= options_.tolerance;
       smallest_change = std::min(smallest_change, largest_change);
       if (!converged && largest_change > 10 * smallest_change) {  // diverging: restart, more relaxed
         relaxation *= Scalar(1.5);
@@ -344,7 +342,7 @@ class SteadyRollingSolver {
     }
     if (!converged) {
       answer.status = Status::iteration_limit;
-      answer.message = "tractions still changing after " + std::to_string(options.max_sweeps) + " sweeps";
+      answer.message = "tractions still changing after " + std::to_string(options_.max_sweeps) + " sweeps";
     } else {
       answer.status = Status::converged;
       answer.message = "tractions stable";

@@ -44,7 +44,6 @@ struct GalerkinMemory {
   // Workspace of one set.
   std::vector<Segment> segments, target_runs;
   std::vector<Index> old_index, new_index;
-  std::vector<char> kept_segment;
   std::vector<std::size_t> direct;
   ScratchMatrix<Scalar> coupling, times_basis, block_entries, reduced_rhs, coefficients;
 
@@ -243,7 +242,6 @@ class GalerkinSetSolver {
     old_index.clear();
     for (const Segment& segment : next.segments) old_index.push_back(previous_index(previous, segment));
     next.order.clear();
-    memory_.kept_segment.assign(next.segments.size(), 0);
     Index kept = 0;
     if (previous != nullptr) {
       new_index.assign(previous->segments.size(), -1);
@@ -256,9 +254,7 @@ class GalerkinSetSolver {
         leading = leading && s >= 0;
         if (s < 0) continue;
         next.order.push_back(s);
-        if (!leading) continue;
-        kept += unknowns_of(next.segments[static_cast<std::size_t>(s)].count);
-        memory_.kept_segment[static_cast<std::size_t>(s)] = 1;
+        if (leading) kept += unknowns_of(next.segments[static_cast<std::size_t>(s)].count);
       }
     }
     for (std::size_t s = 0; s < old_index.size(); ++s) {
@@ -294,13 +290,13 @@ class GalerkinSetSolver {
   /// others are one product of a run of the table with the correlation table of the two
   /// segment lengths (Eq. (M2)). Pairs without a table (past the memory budget) take the
   /// direct product: per source segment s, the Toeplitz blocks C_ts of those targets
-  /// stacked into one tall matrix times A_s. `order_unknowns` has filled `old_index` and
-  /// `kept_segment`.
+  /// stacked into one tall matrix times A_s. `order_unknowns` has filled `old_index`.
   void assemble(Assembly& next, const Assembly* previous, Index kept) {
     auto matrix = next.matrix.view();
     if (kept > 0) matrix.topLeftCorner(kept, kept) = previous->matrix.view().topLeftCorner(kept, kept);
     const auto& old_index = memory_.old_index;
-    const auto& kept_segment = memory_.kept_segment;
+    // The kept segments are exactly those whose unknowns lie in the leading block.
+    const auto both_kept = [&](std::size_t s, std::size_t t) { return next.offsets[s] < kept && next.offsets[t] < kept; };
     auto block_of_count = [this](Index count) { return block_of(count); };
     auto& direct = memory_.direct;
     for (std::size_t s = 0; s < next.segments.size(); ++s) {
@@ -309,7 +305,7 @@ class GalerkinSetSolver {
       direct.clear();
       Index rows = 0;
       for (std::size_t t = s; t < next.segments.size(); ++t) {
-        if (kept_segment[s] && kept_segment[t]) continue;
+        if (both_kept(s, t)) continue;
         const Segment& target = next.segments[t];
         const Index q_t = unknowns_of(target.count);
         auto block = matrix.block(next.offsets[t], next.offsets[s], q_t, q_s);
@@ -358,7 +354,7 @@ class GalerkinSetSolver {
     for (std::size_t s = 0; s < next.segments.size(); ++s) {
       const Index q_s = unknowns_of(next.segments[s].count);
       for (std::size_t t = s + 1; t < next.segments.size(); ++t) {
-        if (kept_segment[s] && kept_segment[t]) continue;
+        if (both_kept(s, t)) continue;
         const Index q_t = unknowns_of(next.segments[t].count);
         matrix.block(next.offsets[s], next.offsets[t], q_s, q_t) =
             matrix.block(next.offsets[t], next.offsets[s], q_t, q_s).transpose();
