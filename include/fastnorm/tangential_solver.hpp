@@ -19,29 +19,9 @@
 #include "fastnorm/material.hpp"
 #include "fastnorm/solution.hpp"
 #include "fastnorm/tangential_influence.hpp"
+#include "fastnorm/tangential_problem.hpp"
 
 namespace fastnorm {
-
-/// Creepages of body 1 (the rail) against body 2 (the wheel), CONTACT's definition: the
-/// rigid slip at (x, y) is w = (ξ − φ·(y − y₀), η + φ·(x − x₀)) (docs/tangential.md §5).
-template <typename Scalar = double>
-struct Creepage {
-  Scalar longitudinal = 0;    ///< ξ (dimensionless)
-  Scalar lateral = 0;         ///< η (dimensionless)
-  Scalar spin = 0;            ///< φ (rad/m)
-  Scalar spin_centre_x = 0;   ///< x₀ (m), in the grid's coordinates
-  Scalar spin_centre_y = 0;   ///< y₀ (m)
-};
-
-/// Which way the contact moves over the bodies' surfaces: material enters the contact at
-/// its leading edge, on the side the contact moves to (docs/tangential.md §5).
-enum class RollingDirection {
-  positive_x,  ///< leading edge at +x (CONTACT's χ = 0)
-  negative_x,  ///< leading edge at −x (χ = π)
-};
-
-/// An element's state in a tangential solution.
-enum class TractionState : signed char { exterior = 0, adhesion = 1, slip = 2 };
 
 template <typename Scalar = double>
 struct TangentialOptions {
@@ -53,26 +33,6 @@ struct TangentialOptions {
                    detail::describe("TangentialOptions: tolerance must lie in (0, 1)", tolerance));
     FASTNORM_CHECK(max_sweeps >= 1, detail::describe("TangentialOptions: max_sweeps must be >= 1", max_sweeps));
   }
-};
-
-/// The answer of solve_steady_rolling. Tractions and forces act on body 1 (the rail), SI.
-template <typename Scalar = double>
-struct TangentialSolution {
-  using Vector = Eigen::Matrix<Scalar, Eigen::Dynamic, 1>;
-  Status status = Status::not_solved;
-  std::string message;
-  Vector traction_x, traction_y;                               ///< Pa, per grid element
-  Eigen::Matrix<TractionState, Eigen::Dynamic, 1> state;       ///< per grid element
-  Vector slip_x, slip_y;     ///< the slip s = w − ∂u/∂x (dimensionless, per element; 0 in adhesion)
-  Scalar force_x = 0, force_y = 0;  ///< N: Σ dA p
-  Scalar spin_moment = 0;           ///< N·m: Σ dA (x p_y − y p_x) about the grid's origin
-  Eigen::Index adhesion_elements = 0, slip_elements = 0;
-  /// The frictional power per unit rolling speed, Σ dA |p||s| over the slip area (N); times
-  /// the rolling speed V (m/s) it is the power the friction dissipates (W).
-  Scalar frictional_power_per_speed = 0;
-  int sweeps = 0;
-  Scalar residual = 0;  ///< the largest traction change of the last sweep / (μ·max p_n)
-  bool ok() const { return status == Status::converged; }
 };
 
 namespace detail {
@@ -208,29 +168,14 @@ class SteadyRollingSolver {
     const Grid<Scalar>& grid = influence_->grid();
     const detail::RollingOperator<Scalar>& rolling = *rolling_;
     const Index mx = grid.mx(), my = grid.my(), n = grid.size();
-    FASTNORM_CHECK(normal.pressure.size() == n && normal.in_contact.size() == n,
-                   detail::describe("SteadyRollingSolver::solve: normal must be a solution on this grid (elements)",
-                                    normal.pressure.size()));
-    FASTNORM_CHECK(normal.ok() || normal.status == Status::no_contact,
-                   std::string("SteadyRollingSolver::solve: normal has no usable answer (status ") + to_string(normal.status) +
-                       ")");
-    FASTNORM_CHECK(std::isfinite(friction) && friction > 0,
-                   detail::describe("SteadyRollingSolver::solve: friction must be positive and finite", friction));
-    FASTNORM_CHECK(std::isfinite(creepage.longitudinal) && std::isfinite(creepage.lateral) && std::isfinite(creepage.spin) &&
-                       std::isfinite(creepage.spin_centre_x) && std::isfinite(creepage.spin_centre_y),
-                   "SteadyRollingSolver::solve: creepage must be finite (longitudinal, lateral, spin, spin centre)");
+    detail::check_tangential_input(grid, normal, friction, creepage, "SteadyRollingSolver::solve");
     const bool positive = direction_ == RollingDirection::positive_x;
     const Index upstream_column = positive ? mx - 1 : 0;
 
-    TangentialSolution<Scalar> answer;
-    answer.traction_x = Vector::Zero(n);
-    answer.traction_y = Vector::Zero(n);
-    answer.slip_x = Vector::Zero(n);
-    answer.slip_y = Vector::Zero(n);
-    answer.state = Eigen::Matrix<TractionState, Eigen::Dynamic, 1>::Constant(n, TractionState::exterior);
+    TangentialSolution<Scalar> answer = detail::zero_answer<Scalar>(n);
     Vector bound = Vector::Zero(n);  // μ p_n
     for (Index k = 0; k < n; ++k) {
-      if (!normal.in_contact(k) || !(normal.pressure(k) > 0)) continue;
+      if (!detail::carries_pressure(normal, k)) continue;
       FASTNORM_CHECK(grid.i_of(k) != upstream_column,
                      "SteadyRollingSolver::solve: the contact area reaches the grid's upstream edge (column " +
                          std::to_string(upstream_column) + "); extend the grid by an element there");
@@ -238,15 +183,10 @@ class SteadyRollingSolver {
       answer.state(k) = TractionState::adhesion;
     }
     const Scalar scale = bound.maxCoeff();
-    if (!(scale > 0)) {
-      answer.status = Status::no_contact;
-      answer.message = "no element carries pressure";
-      return answer;
-    }
+    if (!(scale > 0)) return detail::no_contact_answer<Scalar>(n);
 
-    // The rigid slip (T5), its spin term shifted by a sixth of an element as CONTACT's
-    // (docs/tangential.md §6).
-    const Scalar spin_shift = (positive ? Scalar(1) : Scalar(-1)) * grid.dx() / 6;
+    // The rigid slip (T5), its spin term shifted by a sixth of an element as CONTACT's.
+    const Scalar spin_shift = detail::spin_shift(grid, direction_);
     Vector rigid_x(n), rigid_y(n);
     for (Index k = 0; k < n; ++k) {
       const Scalar x = grid.x(grid.i_of(k)), y = grid.y(grid.j_of(k));
@@ -324,22 +264,12 @@ class SteadyRollingSolver {
       }
     }
 
-    const Scalar area = grid.element_area();
     for (Index k = 0; k < n; ++k) {
-      if (answer.state(k) == TractionState::exterior) continue;
-      const Scalar px = answer.traction_x(k), py = answer.traction_y(k);
-      answer.force_x += area * px;
-      answer.force_y += area * py;
-      answer.spin_moment += area * (grid.x(grid.i_of(k)) * py - grid.y(grid.j_of(k)) * px);
-      if (answer.state(k) == TractionState::adhesion) {
-        ++answer.adhesion_elements;
-      } else {
-        ++answer.slip_elements;
-        answer.slip_x(k) = rigid_x(k) + elastic_x(k);
-        answer.slip_y(k) = rigid_y(k) + elastic_y(k);
-        answer.frictional_power_per_speed += area * std::hypot(px, py) * std::hypot(answer.slip_x(k), answer.slip_y(k));
-      }
+      if (answer.state(k) != TractionState::slip) continue;
+      answer.slip_x(k) = rigid_x(k) + elastic_x(k);
+      answer.slip_y(k) = rigid_y(k) + elastic_y(k);
     }
+    detail::sum_tangential(grid, answer);
     if (!converged) {
       answer.status = Status::iteration_limit;
       answer.message = "tractions still changing after " + std::to_string(options_.max_sweeps) + " sweeps";

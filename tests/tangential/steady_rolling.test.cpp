@@ -5,82 +5,27 @@
 #include <cmath>
 #include <fastnorm/norm_solver.hpp>
 #include <fastnorm/tangential_solver.hpp>
-#include <fstream>
 #include <map>
-#include <sstream>
 #include <string>
 #include <vector>
 
-#include "support/peer_cases.hpp"
+#include "support/hertz_rolling.hpp"
 
 using Catch::Matchers::Contains;
 
 namespace {
 
-/// A Hertzian problem as CONTACT's module 3 poses it: h = A1 x² + B1 y² on an mx × my grid
-/// centred on the origin, normal force Fn, one material.
-struct HertzProblem {
-  fastnorm::Grid<> grid;
-  fastnorm::Material<> material;
-  fastnorm::Solution<> normal;
-};
-
-HertzProblem hertz_problem(double a1, double b1, Eigen::Index mx, Eigen::Index my, double dx, double dy,
-                           double shear_modulus, double poisson_ratio, double normal_force) {
-  const fastnorm::Grid<> grid(mx, my, dx, dy, -static_cast<double>(mx - 1) * dx / 2,
-                              -static_cast<double>(my - 1) * dy / 2);
-  const fastnorm::Material<> material(2 * shear_modulus * (1 + poisson_ratio), poisson_ratio);
-  Eigen::VectorXd h(grid.size());
-  for (Eigen::Index k = 0; k < grid.size(); ++k) {
-    const double x = grid.x(grid.i_of(k)), y = grid.y(grid.j_of(k));
-    h(k) = a1 * x * x + b1 * y * y;
-  }
-  auto normal = fastnorm::NormSolver<>(grid, material).solve(h, fastnorm::Loading<>::force(normal_force));
-  REQUIRE(normal.ok());
-  return {grid, material, std::move(normal)};
-}
+using fastnorm::test::creepage;
+using fastnorm::test::hertz_problem;
+using fastnorm::test::HertzProblem;
+using fastnorm::test::number;
+using fastnorm::test::peer_rows;
 
 /// A small problem for the property tests: CONTACT's tractcurv ellipse (a/b = 0.5) on a
 /// 24 × 22 grid, steel-like, 106.7 kN.
 const HertzProblem& small_problem() {
   static const HertzProblem problem = hertz_problem(0.8, 0.2814, 24, 22, 0.5778e-3, 1.2608e-3, 8.2e10, 0.28, 106700);
   return problem;
-}
-
-fastnorm::Creepage<> creepage(double xi, double eta, double phi) {
-  fastnorm::Creepage<> value;
-  value.longitudinal = xi;
-  value.lateral = eta;
-  value.spin = phi;
-  return value;
-}
-
-/// The rows of ../shared/peer-tangential/hertz.tsv as column name → text.
-std::vector<std::map<std::string, std::string>> peer_rows() {
-  std::vector<std::map<std::string, std::string>> rows;
-  const std::string path = fastnorm::test::peer_tangential_file();
-  if (path.empty()) return rows;
-  std::ifstream in(path);
-  std::string line;
-  std::vector<std::string> columns;
-  while (std::getline(in, line)) {
-    if (line.empty() || line[0] == '#') continue;
-    std::vector<std::string> fields;
-    std::stringstream stream(line);
-    for (std::string field; std::getline(stream, field, '\t');) fields.push_back(field);
-    if (columns.empty()) {
-      columns = fields;
-      continue;
-    }
-    std::map<std::string, std::string> row;
-    for (std::size_t c = 0; c < columns.size() && c < fields.size(); ++c) row[columns[c]] = fields[c];
-    rows.push_back(row);
-  }
-  return rows;
-}
-
-double number(const std::map<std::string, std::string>& row, const std::string& column) {
-  return std::stod(row.at(column));
 }
 
 /// Solves a peer row (CONTACT's mm, N, rad/mm converted to SI) and checks forces within
