@@ -1,4 +1,4 @@
-// fastnorm-bench --tangential: the steady-rolling solver (tangential_solver.hpp) on CONTACT's
+// fastnorm-bench --tangential: the steady-rolling solvers (tangential_solver.hpp, fastsim.hpp) on CONTACT's
 // two Hertzian examples of ../shared/peer-tangential (docs/tangential.md §8), built here from
 // their definitions: "tractcurv" (h = 0.8 x² + 0.2814 y² per metre, a/b = 0.5, 48 × 44
 // elements of 0.2889 × 0.6304 mm, Fn = 106.7 kN, μ = 0.33) at four longitudinal creepages
@@ -15,12 +15,21 @@
 //
 //   tangential case=<file name> elements=<N> ncontact=<n> ... (the same fields)
 //
-// The normal problem is solved once by NORM and the solver's tables built once; the time is
-// the median over --repeats solves of the tangential problem, one thread.
+// and after each, the same problem by FASTSIM (fastsim.hpp: Kalker's flexibilities of the
+// equivalent ellipse, the NORM pressure as its bound), with its differences from the exact
+// path in μFn (forces) and μFn·c (moment, c = √(ab) of the equivalent ellipse):
+//
+//   fastsim case=<name> solve_us=<median> speedup=<exact/fastsim> nadh=<n> nslip=<n> fx=<N> fy=<N>
+//     mz=<N m> dfx=<μFn> dfy=<μFn> dmz=<μFn c>
+//
+// The normal problem is solved once by NORM and the solver's tables built once; the times
+// are medians over --repeats solves (FASTSIM's of 100 solves each), interleaved, one thread.
 #pragma once
 
 #include <fastnorm/fastnorm.hpp>
 #include <fastnorm/tangential_solver.hpp>
+
+#include <cmath>
 
 #include <algorithm>
 #include <chrono>
@@ -30,25 +39,44 @@
 
 namespace fastnorm_bench {
 
-/// Times `repeats` solves of one steady-rolling problem and prints its line.
+/// Times `repeats` solves of one steady-rolling problem by the exact path and by FASTSIM
+/// (Kalker's flexibilities of the equivalent ellipse, on the same NORM pressure),
+/// interleaved, and prints a line for each; FASTSIM's time is the median of samples of
+/// `batch` solves each.
 inline void time_steady_rolling(const std::string& name, const fastnorm::Grid<>& grid, const fastnorm::Material<>& material,
                                 const fastnorm::Solution<>& normal, double friction,
                                 const fastnorm::Creepage<>& creepage, int repeats) {
   const fastnorm::SteadyRollingSolver<> rolling(grid, material);
-  std::vector<double> times;
-  fastnorm::TangentialSolution<> answer;
+  const auto ellipse = fastnorm::equivalent_ellipse(grid, normal);
+  const auto flexibility = fastnorm::kalker_flexibility(ellipse, material);
+  const int batch = 100;
+  std::vector<double> times, fast_times;
+  fastnorm::TangentialSolution<> answer, fast;
   for (int r = 0; r < repeats; ++r) {
-    const auto start = std::chrono::steady_clock::now();
+    auto start = std::chrono::steady_clock::now();
     answer = rolling.solve(normal, friction, creepage);
     times.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+    start = std::chrono::steady_clock::now();
+    for (int b = 0; b < batch; ++b) fast = fastnorm::solve_fastsim(grid, normal, friction, creepage, flexibility);
+    fast_times.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() / batch);
   }
   std::sort(times.begin(), times.end());
+  std::sort(fast_times.begin(), fast_times.end());
+  const double exact_time = times[times.size() / 2], fast_time = fast_times[fast_times.size() / 2];
   std::printf("tangential case=%s elements=%ld ncontact=%ld xi=%g eta=%g phi=%g solve_ms=%.2f sweeps=%d nadh=%ld "
               "nslip=%ld fx=%.1f fy=%.1f mz=%.4f\n",
               name.c_str(), static_cast<long>(grid.size()), static_cast<long>(normal.in_contact.count()),
-              creepage.longitudinal, creepage.lateral, creepage.spin, times[times.size() / 2] * 1e3, answer.sweeps,
+              creepage.longitudinal, creepage.lateral, creepage.spin, exact_time * 1e3, answer.sweeps,
               static_cast<long>(answer.adhesion_elements), static_cast<long>(answer.slip_elements), answer.force_x,
               answer.force_y, answer.spin_moment);
+  // Differences from the exact path in μFn and μFn·c, c = √(ab) of the equivalent ellipse.
+  const double scale = friction * normal.normal_force, c = std::sqrt(ellipse.a * ellipse.b);
+  std::printf("fastsim case=%s solve_us=%.1f speedup=%.0f nadh=%ld nslip=%ld fx=%.1f fy=%.1f mz=%.4f dfx=%.4f dfy=%.4f "
+              "dmz=%.4f\n",
+              name.c_str(), fast_time * 1e6, exact_time / fast_time, static_cast<long>(fast.adhesion_elements),
+              static_cast<long>(fast.slip_elements), fast.force_x, fast.force_y, fast.spin_moment,
+              (fast.force_x - answer.force_x) / scale, (fast.force_y - answer.force_y) / scale,
+              (fast.spin_moment - answer.spin_moment) / (scale * c));
 }
 
 inline void bench_tangential_cases(const std::vector<std::string>& paths, int repeats) {

@@ -10,6 +10,8 @@
 #include "fastnorm/hertz.hpp"
 #include "fastnorm/solvers.hpp"
 #include "fastnorm/tangential_influence.hpp"
+#include "fastnorm/fastsim.hpp"
+#include "fastnorm/kalker_coefficients.hpp"
 #include "fastnorm/tangential_solver.hpp"
 #include "fastnorm/io.hpp"
 #include "fastnorm/wheelrail.hpp"
