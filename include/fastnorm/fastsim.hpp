@@ -62,11 +62,13 @@ Ellipse<Scalar> equivalent_ellipse(const Grid<Scalar>& grid, const Solution<Scal
   FASTNORM_CHECK(normal.pressure.size() == grid.size() && normal.in_contact.size() == grid.size(),
                  describe("equivalent_ellipse: normal must be a solution on this grid (elements)", normal.pressure.size()));
   Eigen::Index count = 0, first_i = grid.mx(), last_i = -1, first_j = grid.my(), last_j = -1;
-  for (Eigen::Index k = 0; k < grid.size(); ++k) {
-    if (!detail::carries_pressure(normal, k)) continue;
-    ++count;
-    first_i = std::min(first_i, grid.i_of(k)), last_i = std::max(last_i, grid.i_of(k));
-    first_j = std::min(first_j, grid.j_of(k)), last_j = std::max(last_j, grid.j_of(k));
+  for (Eigen::Index j = 0; j < grid.my(); ++j) {
+    for (Eigen::Index i = 0; i < grid.mx(); ++i) {
+      if (!detail::carries_pressure(normal, grid.index(i, j))) continue;
+      ++count;
+      first_i = std::min(first_i, i), last_i = std::max(last_i, i);
+      first_j = std::min(first_j, j), last_j = std::max(last_j, j);
+    }
   }
   FASTNORM_CHECK(count > 0, "equivalent_ellipse: no element of normal carries pressure");
   const Scalar area = static_cast<Scalar>(count) * grid.element_area();
@@ -93,14 +95,26 @@ template <typename Scalar>
 TangentialSolution<Scalar> solve_fastsim(const Grid<Scalar>& grid, const Solution<Scalar>& normal, Scalar friction,
                                          const Creepage<Scalar>& creepage, const Flexibility<Scalar>& flexibility,
                                          RollingDirection direction = RollingDirection::positive_x) {
+  TangentialSolution<Scalar> answer;
+  solve_fastsim(grid, normal, friction, creepage, flexibility, direction, answer);
+  return answer;
+}
+
+/// The same into `answer`, whose storage it reuses: no allocation once `answer` has held a
+/// solution of the grid's size (the time loop's form).
+/// @throws fastnorm::invalid_argument as the other overloads
+template <typename Scalar>
+void solve_fastsim(const Grid<Scalar>& grid, const Solution<Scalar>& normal, Scalar friction,
+                   const Creepage<Scalar>& creepage, const Flexibility<Scalar>& flexibility, RollingDirection direction,
+                   TangentialSolution<Scalar>& answer) {
   detail::check_tangential_input(grid, normal, friction, creepage, "solve_fastsim");
   check_positive(flexibility.longitudinal, "solve_fastsim: flexibility.longitudinal (m/Pa)");
   check_positive(flexibility.lateral, "solve_fastsim: flexibility.lateral (m/Pa)");
   check_positive(flexibility.spin, "solve_fastsim: flexibility.spin (m/Pa)");
   const Eigen::Index mx = grid.mx(), my = grid.my();
-  TangentialSolution<Scalar> answer = detail::zero_answer<Scalar>(grid.size());
+  detail::reset_answer(answer, grid.size());
   const bool positive = direction == RollingDirection::positive_x;
-  const Scalar dx = grid.dx(), shift = detail::spin_shift(grid, direction);
+  const Scalar dx = grid.dx(), area = grid.element_area(), shift = detail::spin_shift(grid, direction);
   // The traction rates along x, −dp/dx in the rolling direction's sense: (T11) without dx.
   const Scalar rate_x0 = creepage.longitudinal / flexibility.longitudinal, rate_y0 = creepage.lateral / flexibility.lateral;
   const Scalar spin_rate = creepage.spin / flexibility.spin;
@@ -118,26 +132,27 @@ TangentialSolution<Scalar> solve_fastsim(const Grid<Scalar>& grid, const Solutio
       loaded = true;
       const Scalar rate_y = rate_y0 + spin_rate * (grid.x(i) + shift - creepage.spin_centre_x);
       const Scalar trial_x = px - dx * rate_x, trial_y = py - dx * rate_y;
-      const Scalar bound = friction * normal.pressure(k), size = std::hypot(trial_x, trial_y);
-      if (size <= bound) {
+      // Compared squared, √ only where it slips (std::hypot's overflow guard is not needed).
+      const Scalar bound = friction * normal.pressure(k), size_squared = trial_x * trial_x + trial_y * trial_y;
+      if (size_squared <= bound * bound) {
         px = trial_x, py = trial_y;
         answer.state(k) = TractionState::adhesion;
       } else {
-        px = trial_x * bound / size, py = trial_y * bound / size;
+        const Scalar scale = bound / std::sqrt(size_squared);
+        px = trial_x * scale, py = trial_y * scale;
         answer.state(k) = TractionState::slip;
         answer.slip_x(k) = flexibility.longitudinal * (px - trial_x) / dx;
         answer.slip_y(k) = flexibility.lateral * (py - trial_y) / dx;
       }
       answer.traction_x(k) = px;
       answer.traction_y(k) = py;
+      detail::add_element(answer, area, grid.x(i), grid.y(j), k);
     }
   }
-  if (!loaded) return detail::no_contact_answer<Scalar>(grid.size());
-  detail::sum_tangential(grid, answer);
+  if (!loaded) return detail::mark_no_contact(answer);
   answer.sweeps = 1;
   answer.status = Status::converged;
   answer.message = "simplified theory (FASTSIM): one sweep";
-  return answer;
 }
 
 /// FASTSIM with Kalker's flexibilities of the ellipse equivalent to the contact area

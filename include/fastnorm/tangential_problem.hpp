@@ -80,25 +80,42 @@ bool carries_pressure(const Solution<Scalar>& normal, Eigen::Index k) {
   return normal.in_contact(k) && normal.pressure(k) > 0;
 }
 
+/// `answer` made a solution of n elements, all exterior, every traction, slip, sum and count
+/// zero, keeping its vectors' storage if they have n elements.
+template <typename Scalar>
+void reset_answer(TangentialSolution<Scalar>& answer, Eigen::Index n) {
+  answer.traction_x.setZero(n);
+  answer.traction_y.setZero(n);
+  answer.slip_x.setZero(n);
+  answer.slip_y.setZero(n);
+  answer.state.setConstant(n, TractionState::exterior);
+  answer.force_x = answer.force_y = answer.spin_moment = answer.frictional_power_per_speed = answer.residual = 0;
+  answer.adhesion_elements = answer.slip_elements = 0;
+  answer.sweeps = 0;
+  answer.status = Status::not_solved;
+  answer.message.clear();
+}
+
 /// A solution of n elements, all exterior, every traction and slip zero.
 template <typename Scalar>
 TangentialSolution<Scalar> zero_answer(Eigen::Index n) {
-  using Vector = typename TangentialSolution<Scalar>::Vector;
   TangentialSolution<Scalar> answer;
-  answer.traction_x = Vector::Zero(n);
-  answer.traction_y = Vector::Zero(n);
-  answer.slip_x = Vector::Zero(n);
-  answer.slip_y = Vector::Zero(n);
-  answer.state = Eigen::Matrix<TractionState, Eigen::Dynamic, 1>::Constant(n, TractionState::exterior);
+  reset_answer(answer, n);
   return answer;
+}
+
+/// Marks `answer` as having no element that carries pressure (status no_contact).
+template <typename Scalar>
+void mark_no_contact(TangentialSolution<Scalar>& answer) {
+  answer.status = Status::no_contact;
+  answer.message = "no element carries pressure";
 }
 
 /// The answer when no element carries pressure: no traction, status no_contact.
 template <typename Scalar>
 TangentialSolution<Scalar> no_contact_answer(Eigen::Index n) {
   TangentialSolution<Scalar> answer = zero_answer<Scalar>(n);
-  answer.status = Status::no_contact;
-  answer.message = "no element carries pressure";
+  mark_no_contact(answer);
   return answer;
 }
 
@@ -109,22 +126,32 @@ Scalar spin_shift(const Grid<Scalar>& grid, RollingDirection direction) {
   return (direction == RollingDirection::positive_x ? Scalar(1) : Scalar(-1)) * grid.dx() / 6;
 }
 
-/// Fills the forces, the spin moment about the grid's origin, the element counts and the
-/// frictional power of `answer` from its tractions, states and slips.
+/// Adds an element's traction at (x, y) to the answer's forces, spin moment about the grid's
+/// origin, element counts and frictional power, with √(x² + y²) rather than std::hypot
+/// (whose guard against overflow costs more than the whole sum; tractions and slips are far
+/// from double's range).
+template <typename Scalar>
+void add_element(TangentialSolution<Scalar>& answer, Scalar area, Scalar x, Scalar y, Eigen::Index k) {
+  const Scalar px = answer.traction_x(k), py = answer.traction_y(k);
+  answer.force_x += area * px;
+  answer.force_y += area * py;
+  answer.spin_moment += area * (x * py - y * px);
+  if (answer.state(k) == TractionState::adhesion) {
+    ++answer.adhesion_elements;
+  } else {
+    ++answer.slip_elements;
+    const Scalar sx = answer.slip_x(k), sy = answer.slip_y(k);
+    answer.frictional_power_per_speed += area * std::sqrt((px * px + py * py) * (sx * sx + sy * sy));
+  }
+}
+
+/// Fills the sums of add_element from every element in contact, row by row.
 template <typename Scalar>
 void sum_tangential(const Grid<Scalar>& grid, TangentialSolution<Scalar>& answer) {
-  const Scalar area = grid.element_area();
-  for (Eigen::Index k = 0; k < grid.size(); ++k) {
-    if (answer.state(k) == TractionState::exterior) continue;
-    const Scalar px = answer.traction_x(k), py = answer.traction_y(k);
-    answer.force_x += area * px;
-    answer.force_y += area * py;
-    answer.spin_moment += area * (grid.x(grid.i_of(k)) * py - grid.y(grid.j_of(k)) * px);
-    if (answer.state(k) == TractionState::adhesion) {
-      ++answer.adhesion_elements;
-    } else {
-      ++answer.slip_elements;
-      answer.frictional_power_per_speed += area * std::hypot(px, py) * std::hypot(answer.slip_x(k), answer.slip_y(k));
+  for (Eigen::Index j = 0; j < grid.my(); ++j) {
+    for (Eigen::Index i = 0; i < grid.mx(); ++i) {
+      const Eigen::Index k = grid.index(i, j);
+      if (answer.state(k) != TractionState::exterior) add_element(answer, grid.element_area(), grid.x(i), grid.y(j), k);
     }
   }
 }
