@@ -4,9 +4,14 @@
 // 20 µm·sin(2π·8 Hz·t), at 1 kHz; element sizes what 60 elements give at y = 0 (the model's
 // default reference pose). One line per solver:
 //
-//   trajectory solver=<name> steps=<n> search_us=<t> h_us=<t> solve_us=<t> total_us=<t>
-//     total_p99_us=<t> max_err_vs_norm=<x> max_set_diff=<n> roughness=<x> roughness_norm=<x>
-//     allocations_per_step=<x> iterations_per_patch=<x>
+//   trajectory solver=<name> steps=<n> search_us=<t> h_us=<t> solve_us=<t> tangential_us=<t>
+//     total_us=<t> total_p99_us=<t> max_err_vs_norm=<x> max_set_diff=<n> roughness=<x>
+//     roughness_norm=<x> allocations_per_step=<x> iterations_per_patch=<x>
+//
+// The wheelset moves forwards at 30 m/s, rolling (pitch rate −V/r0), with the pose's rates
+// by central differences: each step also gives every patch's creep forces (FASTSIM, μ = 0.3,
+// docs/wheel-rail.md §10), timed as tangential_us; total_us is search + h + solve, the
+// normal contact, as before.
 //
 // A solver runs with the model's defaults (WheelsetContactOptions::starts_warm: NORM, CG and
 // the edge-enriched polynomial basis warm, the other reduced bases cold); "+warm" or "+cold"
@@ -69,9 +74,31 @@ inline std::vector<wr::WheelsetPose> trajectory_poses(const wr::Track& track, co
   return poses;
 }
 
+inline constexpr double trajectory_speed = 30;  // m/s
+
+/// The wheelset's velocities along `poses` (1 kHz): forward at trajectory_speed, rolling
+/// at −V/r0, the pose's rates by central differences (one-sided at the ends).
+inline std::vector<wr::WheelsetVelocity> trajectory_velocities(const wr::Wheelset& wheelset,
+                                                              const std::vector<wr::WheelsetPose>& poses) {
+  std::vector<wr::WheelsetVelocity> velocities(poses.size());
+  for (std::size_t step = 0; step < poses.size(); ++step) {
+    const std::size_t before = step > 0 ? step - 1 : step, after = step + 1 < poses.size() ? step + 1 : step;
+    const double span = 1e-3 * static_cast<double>(after - before);
+    auto& velocity = velocities[step];
+    velocity.forward = trajectory_speed;
+    velocity.pitch_rate = -trajectory_speed / wheelset.layout().nominal_radius;
+    if (span == 0) continue;
+    velocity.lateral = (poses[after].y - poses[before].y) / span;
+    velocity.vertical = (poses[after].z - poses[before].z) / span;
+    velocity.roll_rate = (poses[after].roll - poses[before].roll) / span;
+    velocity.yaw_rate = (poses[after].yaw - poses[before].yaw) / span;
+  }
+  return velocities;
+}
+
 /// What one solver's run records.
 struct TrajectoryRun {
-  std::vector<double> search, distance, solve, total;  // s, per wheel per step
+  std::vector<double> search, distance, solve, tangential, total;  // s, per wheel per step
   std::vector<std::array<double, 2>> wheel_force;       // Σ Fn per wheel, per step
   std::vector<std::vector<fastnorm::Solution<double>>> checked;  // every 20th step: the patches' solutions
   double allocations_per_step = -1;
@@ -96,6 +123,7 @@ struct TrajectorySolver {
   wr::WheelsetContactOptions options() const {
     wr::WheelsetContactOptions options;
     options.solver = spec;
+    options.creep.friction = 0.3;
     options.reduced_warm_start = warm;
     if (warm) options.warm_start = *warm;  // NORM and CG
     return options;
@@ -107,18 +135,20 @@ inline constexpr int check_every = 20;
 inline TrajectoryRun run_trajectory(const wr::Track& track, const wr::Wheelset& wheelset,
                                     const std::vector<wr::WheelsetPose>& poses, const std::string& solver) {
   wr::WheelsetContact<> contact(track, wheelset, TrajectorySolver::parse(solver).options());
+  const auto velocities = trajectory_velocities(wheelset, poses);
   TrajectoryRun run;
   long iterations = 0, solves = 0;
   long allocations_before = 0;
   for (std::size_t step = 0; step < poses.size(); ++step) {
     if (step == 10) allocations_before = fastnorm_example::allocation_count();
-    const auto& result = contact.evaluate(poses[step]);
+    const auto& result = contact.evaluate(poses[step], velocities[step]);
     std::array<double, 2> force{};
     for (std::size_t w = 0; w < 2; ++w) {
       const auto& wheel = result.wheels[w];
       run.search.push_back(wheel.times.search);
       run.distance.push_back(wheel.times.distance);
       run.solve.push_back(wheel.times.solve);
+      run.tangential.push_back(wheel.times.tangential);
       run.total.push_back(wheel.times.search + wheel.times.distance + wheel.times.solve);
       force[w] = wheel.normal_force;
       for (const auto& patch : wheel.patches) iterations += patch.solution.iterations, ++solves;
@@ -277,11 +307,13 @@ inline void bench_trajectory(const std::vector<std::string>& solvers, int steps)
     TrajectoryRun run = label == "norm" ? norm : run_trajectory(track, wheelset, poses, name);
     const PatchComparison to_norm = compare_patches(run, norm);
     const long max_set_diff = to_norm.set_diff.empty() ? 0 : *std::max_element(to_norm.set_diff.begin(), to_norm.set_diff.end());
-    std::printf("trajectory solver=%s steps=%d search_us=%.1f h_us=%.1f solve_us=%.1f total_us=%.1f total_p99_us=%.1f "
+    std::printf("trajectory solver=%s steps=%d search_us=%.1f h_us=%.1f solve_us=%.1f tangential_us=%.1f total_us=%.1f "
+                "total_p99_us=%.1f "
                 "max_err_vs_norm=%.3e max_set_diff=%ld roughness=%.3e roughness_norm=%.3e allocations_per_step=%.2f "
                 "iterations_per_patch=%.2f\n",
                 label.c_str(), steps, 1e6 * quantile(run.search, 0.5),
-                1e6 * quantile(run.distance, 0.5), 1e6 * quantile(run.solve, 0.5), 1e6 * quantile(run.total, 0.5),
+                1e6 * quantile(run.distance, 0.5), 1e6 * quantile(run.solve, 0.5), 1e6 * quantile(run.tangential, 0.5),
+                1e6 * quantile(run.total, 0.5),
                 1e6 * quantile(run.total, 0.99), largest(to_norm.error), max_set_diff, roughness(run), roughness(norm),
                 run.allocations_per_step, run.iterations_per_patch);
     std::fflush(stdout);

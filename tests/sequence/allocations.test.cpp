@@ -128,6 +128,31 @@ TEST_CASE("The wheelset contact model allocates nothing per step after warm-up",
   CHECK(allocations == 0);
 }
 
+TEST_CASE("Creep forces in the time loop allocate nothing per step after warm-up", "[sequence][allocation]") {
+  namespace wr = fastnorm::wheelrail;
+  const wr::Track track;
+  const wr::Wheelset wheelset;
+  // The first 60 ms of the trajectory benchmark, with its velocities.
+  const auto poses = fastnorm_bench::trajectory_poses(track, wheelset, 60);
+  const auto velocities = fastnorm_bench::trajectory_velocities(wheelset, poses);
+  wr::WheelsetContactOptions options;
+  options.solver = fastnorm::SolverSpec<>::parse("cg");
+  options.grid.elements = 20;
+  options.creep.friction = 0.3;
+  wr::WheelsetContact<> contact(track, wheelset, options);
+  for (std::size_t step = 0; step < 20; ++step) contact.evaluate(poses[step], velocities[step]);
+  double creep = 0;
+  const long allocations = allocations_of([&] {
+    for (std::size_t step = 20; step < poses.size(); ++step) {
+      const auto& result = contact.evaluate(poses[step], velocities[step]);
+      REQUIRE(result.ok());
+      creep += std::abs(result.wheels[0].patches[0].traction.force_y);
+    }
+  });
+  CHECK(creep > 0);
+  CHECK(allocations == 0);
+}
+
 TEST_CASE("Patches that appear, merge and vanish keep their storage: a repeated sweep allocates nothing",
           "[sequence][allocation]") {
   namespace wr = fastnorm::wheelrail;

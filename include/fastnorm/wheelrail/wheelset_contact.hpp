@@ -18,11 +18,13 @@
 #include <vector>
 
 #include "fastnorm/any_solver.hpp"
+#include "fastnorm/fastsim.hpp"
 #include "fastnorm/solver_from_spec.hpp"
 #include "fastnorm/error.hpp"
 #include "fastnorm/material.hpp"
 #include "fastnorm/solver_spec.hpp"
 #include "fastnorm/wheelrail/contact_search.hpp"
+#include "fastnorm/wheelrail/creepage.hpp"
 #include "fastnorm/wheelrail/patch.hpp"
 #include "fastnorm/wheelrail/undeformed_distance.hpp"
 #include "fastnorm/wheelrail/wheelset_contact_options.hpp"
@@ -51,12 +53,6 @@ struct PatchState {
   std::size_t solver = no_solver;
   Workspace workspace;
 };
-
-/// a × b. By hand: Eigen's cross() lives in <Eigen/Geometry>, which adds about 0.2 s and
-/// 19 MB to every file that includes fastnorm.hpp (docs/contributing.md, compile cost).
-inline Eigen::Vector3d cross(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
-  return {a.y() * b.z() - a.z() * b.y(), a.z() * b.x() - a.x() * b.z(), a.x() * b.y() - a.y() * b.x()};
-}
 
 /// `used` resized to `count` elements without freeing any element's storage: those beyond
 /// `count` move to `spare`, and a growing `used` takes them back from it before making new
@@ -154,33 +150,32 @@ class WheelsetContact {
   /// segment tables.
   std::size_t solver_count() const { return solvers_.size(); }
 
-  /// Contact of both wheels at `pose`; the result stays valid until the next call.
+  /// Contact of both wheels at `pose`, normal only; the result stays valid until the next
+  /// call.
   /// @throws fastnorm::invalid_argument for a pose that is not finite or outside PoseLimits
-  const WheelsetContactResult& evaluate(const WheelsetPose& pose) {
-    check_pose(pose, "WheelsetContact::evaluate");
-    result_.pose = pose;
-    result_.force.setZero();
-    result_.moment.setZero();
-    result_.status = StepStatus{StepStatus::Code::ok, Side::left, -1, Status::not_solved, {}};
-    for (Side side : {Side::left, Side::right}) {
-      WheelContact& wheel = result_.wheels[wheel_index(side)];
-      evaluate_wheel(side, pose, wheel);
-      result_.force += wheel.force;
-      result_.moment += wheel.moment;
-      if (result_.status.ok() && !wheel.status.ok()) result_.status = wheel.status;
-    }
-    return result_;
+  const WheelsetContactResult& evaluate(const WheelsetPose& pose) { return evaluate_both(pose, nullptr); }
+
+  /// Contact of both wheels at `pose` moving with `velocity`: with each patch's creepages
+  /// and creep forces (docs/wheel-rail.md §10), which the wheel's and wheelset's sums
+  /// include.
+  /// @throws fastnorm::invalid_argument as evaluate(pose), for velocities that are not finite
+  ///         or a forward speed of zero, or when options.creep.friction is not set
+  const WheelsetContactResult& evaluate(const WheelsetPose& pose, const WheelsetVelocity& velocity) {
+    check_creep_set();
+    return evaluate_both(pose, &velocity);
   }
 
   /// Contact of the wheel of `side` only, at `pose` (CONTACT's single-wheel mode); the other
   /// wheel's state is kept for a later call, and the wheelset's sums are not updated. The
   /// result stays valid until the next call.
   /// @throws fastnorm::invalid_argument for a pose that is not finite or outside PoseLimits
-  const WheelContact& evaluate(const WheelsetPose& pose, Side side) {
-    check_pose(pose, "WheelsetContact::evaluate");
-    WheelContact& wheel = result_.wheels[wheel_index(side)];
-    evaluate_wheel(side, pose, wheel);
-    return wheel;
+  const WheelContact& evaluate(const WheelsetPose& pose, Side side) { return evaluate_one(pose, nullptr, side); }
+
+  /// The same moving with `velocity`, with creep forces.
+  /// @throws fastnorm::invalid_argument as evaluate(pose, velocity)
+  const WheelContact& evaluate(const WheelsetPose& pose, const WheelsetVelocity& velocity, Side side) {
+    check_creep_set();
+    return evaluate_one(pose, &velocity, side);
   }
 
   /// The next evaluate starts cold: no previous patches, no contact sets (storage kept).
@@ -221,6 +216,34 @@ class WheelsetContact {
   }
 
  private:
+  const WheelsetContactResult& evaluate_both(const WheelsetPose& pose, const WheelsetVelocity* velocity) {
+    check_pose(pose, "WheelsetContact::evaluate");
+    result_.pose = pose;
+    result_.force.setZero();
+    result_.moment.setZero();
+    result_.status = StepStatus{StepStatus::Code::ok, Side::left, -1, Status::not_solved, {}};
+    for (Side side : {Side::left, Side::right}) {
+      WheelContact& wheel = result_.wheels[wheel_index(side)];
+      evaluate_wheel(side, pose, velocity, wheel);
+      result_.force += wheel.force;
+      result_.moment += wheel.moment;
+      if (result_.status.ok() && !wheel.status.ok()) result_.status = wheel.status;
+    }
+    return result_;
+  }
+
+  const WheelContact& evaluate_one(const WheelsetPose& pose, const WheelsetVelocity* velocity, Side side) {
+    check_pose(pose, "WheelsetContact::evaluate");
+    WheelContact& wheel = result_.wheels[wheel_index(side)];
+    evaluate_wheel(side, pose, velocity, wheel);
+    return wheel;
+  }
+
+  void check_creep_set() const {
+    FASTNORM_CHECK(options_.creep.friction.has_value(),
+                   "WheelsetContact::evaluate: velocities given, but options.creep.friction is not set");
+  }
+
   void choose_element_sizes() {
     WheelsetPose pose;
     if (options_.reference_pose) {
@@ -237,8 +260,9 @@ class WheelsetContact {
     dx_ = sizes.length, ds_ = sizes.width;
   }
 
-  /// Search, frames and grids, h, then a solve per patch started from its predecessors.
-  void evaluate_wheel(Side side, const WheelsetPose& pose, WheelContact& wheel) {
+  /// Search, frames and grids, h, then a solve per patch started from its predecessors, and
+  /// with `velocity` the creep forces.
+  void evaluate_wheel(Side side, const WheelsetPose& pose, const WheelsetVelocity* velocity, WheelContact& wheel) {
     auto clock = std::chrono::steady_clock::now();
     wheel.side = side;
     const std::vector<ContactRegion>& regions = regions_;
@@ -268,17 +292,11 @@ class WheelsetContact {
     wheel.times.distance = detail::seconds_since(clock);
 
     clock = std::chrono::steady_clock::now();
-    wheel.force.setZero();
-    wheel.moment.setZero();
-    wheel.normal_force = 0;
     wheel.status = StepStatus{StepStatus::Code::ok, side, -1, Status::not_solved, {}};
     for (std::size_t k = 0; k < count; ++k) {
       start_from(successors[k], previous, next[k]);
       const PatchContact& patch = wheel.patches[k];
       solve_patch(pose, next[k], wheel.patches[k]);
-      wheel.force += patch.force;
-      wheel.moment += patch.moment;
-      wheel.normal_force += patch.normal_force;
       if (wheel.status.ok() && !patch.ok()) {
         wheel.status = {StepStatus::Code::patch_failed, side, static_cast<int>(k), patch.solution.status,
                         std::string(to_string(side)) + " wheel, patch " + std::to_string(k) + " of " +
@@ -289,6 +307,55 @@ class WheelsetContact {
     keep_spare_workspaces(previous);
     std::swap(previous, next);
     wheel.times.solve = detail::seconds_since(clock);
+
+    clock = std::chrono::steady_clock::now();
+    for (std::size_t k = 0; k < count; ++k) {
+      if (velocity) {
+        add_creep(pose, *velocity, wheel.patches[k]);
+      } else {
+        clear_creep(wheel.patches[k], 0);
+      }
+    }
+    wheel.times.tangential = velocity ? detail::seconds_since(clock) : 0.0;
+    wheel.force.setZero();
+    wheel.moment.setZero();
+    wheel.normal_force = 0;
+    for (std::size_t k = 0; k < count; ++k) {
+      wheel.force += wheel.patches[k].force;
+      wheel.moment += wheel.patches[k].moment;
+      wheel.normal_force += wheel.patches[k].normal_force;
+    }
+  }
+
+  /// The creepages of a patch at its reference point and its creep forces by FASTSIM on its
+  /// pressure, with Kalker's flexibilities of its equivalent ellipse (docs/wheel-rail.md §10),
+  /// added to the patch's force and moment on the wheel.
+  void add_creep(const WheelsetPose& pose, const WheelsetVelocity& velocity, PatchContact& out) const {
+    const auto& patch = out.patch;
+    const PatchKinematics kinematics = patch_kinematics(wheelset_, pose, velocity, patch.frame);
+    const auto& normal = out.solution;
+    if (!normal.ok() || !(normal.normal_force > 0)) {  // no pressure to carry tractions
+      clear_creep(out, patch.grid.size());
+      out.creepage = kinematics.creepage;
+      return;
+    }
+    out.creepage = kinematics.creepage;
+    const auto flexibility = kalker_flexibility(equivalent_ellipse(patch.grid, normal), options_.material);
+    solve_fastsim(patch.grid, normal, *options_.creep.friction, kinematics.creepage, flexibility, kinematics.direction,
+                  out.traction);
+    const auto& traction = out.traction;
+    out.creep_force = -(traction.force_x * Eigen::Vector3d::UnitX() + traction.force_y * patch.frame.lateral_axis());
+    out.force += out.creep_force;
+    out.moment += detail::cross(patch.frame.reference - wheelset_.centre(pose), out.creep_force) -
+                  traction.spin_moment * patch.frame.normal();
+  }
+
+  /// No creep: the patch's creepages, tractions and creep force cleared, its tractions
+  /// `elements` long (0 without velocities: a model evaluated without them holds none).
+  static void clear_creep(PatchContact& out, Eigen::Index elements) {
+    out.creepage = {};
+    fastnorm::detail::reset_answer(out.traction, elements);
+    out.creep_force.setZero();
   }
 
   /// For each new region, the previous patches whose reference point lies within the
@@ -461,23 +528,25 @@ class WheelsetContact {
     Eigen::Index length = 0;
     std::vector<Eigen::VectorXd> distances;
     std::vector<Solution<double>> solutions;
+    std::vector<TangentialSolution<double>> tractions;
   };
 
   SpareStorage& spares_of(Eigen::Index length) {
     for (auto& spare : spare_storage_) {
       if (spare.length == length) return spare;
     }
-    spare_storage_.push_back({length, {}, {}});
+    spare_storage_.push_back({length, {}, {}, {}});
     return spare_storage_.back();
   }
 
-  /// Gives the result patch `out` an h and a solution of `length` elements: its own, if they
-  /// have that length; else spares of that length, its own going to the spares of theirs.
+  /// Gives the result patch `out` an h, a solution and tractions of `length` elements: its
+  /// own, if they have that length; else spares of that length, its own going to the spares of theirs.
   /// Eigen's vectors keep no capacity, so a result slot that meets another grid size would
   /// otherwise allocate whenever patches appear, merge or vanish.
   void fit_storage(PatchContact& out, Eigen::Index length) {
     exchange(out.patch.undeformed_distance, out.patch.undeformed_distance.size(), length, &SpareStorage::distances);
     exchange(out.solution, out.solution.pressure.size(), length, &SpareStorage::solutions);
+    exchange(out.traction, out.traction.traction_x.size(), length, &SpareStorage::tractions);
   }
 
   /// `held`, of `held_length` elements, for one of `length` from the spares (if any: else it

@@ -14,6 +14,19 @@
 
 namespace fastnorm::wheelrail {
 
+/// Creep forces of a WheelsetContact (docs/wheel-rail.md §10): computed by Kalker's
+/// simplified theory (FASTSIM, fastsim.hpp) on each patch's pressure whenever evaluate is
+/// given the wheelset's velocities.
+struct CreepOptions {
+  /// Coulomb's coefficient μ of every patch; unset, evaluate with velocities is refused.
+  std::optional<double> friction;
+
+  /// @throws fastnorm::invalid_argument naming the offending field
+  void validate() const {
+    if (friction) fastnorm::detail::check_positive(*friction, "WheelsetContactOptions: creep.friction");
+  }
+};
+
 /// Settings of a WheelsetContact, fixed for its life.
 struct WheelsetContactOptions {
   /// The patch solver and its settings (NORM by default). With a model of a named solver
@@ -51,6 +64,7 @@ struct WheelsetContactOptions {
   std::optional<bool> reduced_warm_start;
 
   bool stiffness = true;  ///< compute each patch's dFn/dδ (one extra solve with the last factor)
+  CreepOptions creep;     ///< creep forces, when evaluate is given velocities
 
   /// Whether a solve of `solver` starts from the patch's previous contact set.
   bool starts_warm() const {
@@ -64,6 +78,7 @@ struct WheelsetContactOptions {
     grid.validate();
     search.validate();
     distance.validate();
+    creep.validate();
     fastnorm::detail::check_positive(reference_approach, "WheelsetContactOptions: reference_approach (m)");
     FASTNORM_CHECK((grid.element_length > 0) == (grid.element_width > 0),
                    "WheelsetContactOptions: give both grid.element_length and grid.element_width, or neither");

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "fastnorm/solution.hpp"
+#include "fastnorm/tangential_problem.hpp"
 #include "fastnorm/wheelrail/patch.hpp"
 
 namespace fastnorm::wheelrail {
@@ -46,10 +47,21 @@ struct PatchContact {
   double profile_y = 0;         ///< the wheel profile coordinate y_w of the reference point, weighted alike (m)
   Eigen::Vector3d pressure_centre = Eigen::Vector3d::Zero();  ///< centroid of the pressure in the tangent plane
   double normal_force = 0;      ///< Fn (N)
-  /// The normal force on the wheel, −Fn·n (N; n into the rail, PatchFrame::normal).
+  /// The contact force on the wheel (N): −Fn·n (n into the rail, PatchFrame::normal) plus
+  /// creep_force.
   Eigen::Vector3d force = Eigen::Vector3d::Zero();
-  /// Its moment about the wheelset centre, (pressure_centre − C) × force (N·m).
+  /// Its moment about the wheelset centre (N·m): (pressure_centre − C) × (−Fn·n), plus
+  /// (P_ref − C) × creep_force − Mn·n with the creep.
   Eigen::Vector3d moment = Eigen::Vector3d::Zero();
+  /// With velocities (docs/wheel-rail.md §10; else zero): the creepages of the rail against
+  /// the wheel at the reference point P_ref, which is the spin centre.
+  Creepage<double> creepage;
+  /// With velocities: the tractions on the rail in the patch frame (x, s), their forces
+  /// Fx = force_x, Fs = force_y and spin moment Mn = spin_moment about P_ref, the adhesion
+  /// and slip areas (FASTSIM); without, empty and not_solved.
+  TangentialSolution<double> traction;
+  /// The creep force on the wheel, −(Fx·e_x + Fs·t_s) (N, track frame).
+  Eigen::Vector3d creep_force = Eigen::Vector3d::Zero();
   double contact_angle = 0;     ///< of the normal from the vertical, + leaning to the track centre (rad)
   double approach = 0;          ///< the rigid interpenetration −min h (m)
   Eigen::Index contact_elements = 0;
@@ -94,6 +106,7 @@ struct StageTimes {
   double search = 0;    ///< contact search, patch frames and grids
   double distance = 0;  ///< undeformed distance h on the grids
   double solve = 0;     ///< normal solves and stiffness
+  double tangential = 0;  ///< creepages and creep forces (0 without velocities)
 };
 
 /// One wheel at the pose of the call.
