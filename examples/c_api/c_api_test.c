@@ -140,11 +140,17 @@ static void bad_input_is_named(void) {
   EXPECT(strcmp(fastnorm_status_name(42), "unknown") == 0);
 }
 
-static void wheelset_equilibrium_and_time_step(void) {
+/* The wheelset model's defaults with the elliptic basis on 30 elements: quick to solve. */
+static fastnorm_wheelset_options elliptic_on_30_elements(void) {
   fastnorm_wheelset_options options;
   fastnorm_wheelset_options_default(&options);
   options.solver = "elliptic";
   options.elements = 30;
+  return options;
+}
+
+static void wheelset_equilibrium_and_time_step(void) {
+  fastnorm_wheelset_options options = elliptic_on_30_elements();
   fastnorm_wheelset* model = NULL;
   REQUIRE_OK(fastnorm_wheelset_create(&options, &model));
   /* Zeroed structs, and the model before any evaluate, read "not solved". */
@@ -240,6 +246,73 @@ static void wheelset_equilibrium_and_time_step(void) {
   fastnorm_wheelset_destroy(model);
 }
 
+/* Creep forces in the time loop (docs/wheel-rail.md §10): a rolling wheelset with a yaw
+ * angle; per patch the tractions sum to the creep forces on the rail, the creep force on the
+ * wheel is their opposite along e_x and t_s, and the patch force is -Fn n plus it. */
+static void wheelset_creep_forces(void) {
+  fastnorm_wheelset_options options = elliptic_on_30_elements();
+  fastnorm_wheelset* model = NULL;
+  REQUIRE_OK(fastnorm_wheelset_create(&options, &model));
+  fastnorm_equilibrium found; /* 200 kN on the wheelset at yaw 3 mrad */
+  REQUIRE_OK(fastnorm_wheelset_equilibrium(model, 2e5, 0.0, 3e-3, &found));
+  const fastnorm_pose pose = found.pose;
+  const fastnorm_velocity velocity = {30, 0, 0, 0, 0, -30 / 0.45};
+  double force[3];
+  expect_error(fastnorm_wheelset_evaluate_moving(model, &pose, &velocity, force, NULL), "friction");
+  fastnorm_wheelset_destroy(model);
+  options.friction = 0.3;
+  REQUIRE_OK(fastnorm_wheelset_create(&options, &model));
+  REQUIRE_OK(fastnorm_wheelset_evaluate(model, &pose, force, NULL));
+  fastnorm_patch patch;
+  REQUIRE_OK(fastnorm_wheelset_patch(model, 1, 0, &patch));
+  EXPECT(patch.creep.status == FASTNORM_NOT_SOLVED);
+  double* traction_x = malloc(sizeof(double) * (size_t)(patch.grid.mx * patch.grid.my));
+  double* traction_s = malloc(sizeof(double) * (size_t)(patch.grid.mx * patch.grid.my));
+  expect_error(fastnorm_wheelset_patch_traction(model, 1, 0, traction_x, traction_s), "evaluate_moving");
+  free(traction_x);
+  free(traction_s);
+
+  REQUIRE_OK(fastnorm_wheelset_evaluate_moving(model, &pose, &velocity, force, NULL));
+  double lateral = 0;
+  for (int wheel = 0; wheel < 2; ++wheel) {
+    int count = 0;
+    REQUIRE_OK(fastnorm_wheelset_patch_count(model, wheel, &count));
+    for (int n = 0; n < count; ++n) {
+      REQUIRE_OK(fastnorm_wheelset_patch(model, wheel, n, &patch));
+      const int size = patch.grid.mx * patch.grid.my;
+      traction_x = malloc(sizeof(double) * (size_t)size);
+      traction_s = malloc(sizeof(double) * (size_t)size);
+      REQUIRE_OK(fastnorm_wheelset_patch_traction(model, wheel, n, traction_x, traction_s));
+      double fx = 0, fs = 0;
+      for (int k = 0; k < size; ++k) fx += traction_x[k], fs += traction_s[k];
+      fx *= patch.grid.dx * patch.grid.dy, fs *= patch.grid.dx * patch.grid.dy;
+      printf("wheel %d patch %d: xi %.4g eta %.4g phi %.4g rad/m, Fx %.6g N, Fs %.6g N on the rail, %d adhesion, %d slip\n",
+             wheel, n, patch.creepage.longitudinal, patch.creepage.lateral, patch.creepage.spin, patch.creep.force_x,
+             patch.creep.force_y, patch.creep.adhesion_elements, patch.creep.slip_elements);
+      EXPECT(patch.creep.status == FASTNORM_CONVERGED);
+      EXPECT(patch.creepage.lateral > 2e-3 && patch.creepage.lateral < 4e-3); /* yaw 3 mrad */
+      EXPECT(fabs(fx - patch.creep.force_x) <= 1e-9 * fabs(patch.creep.force_y));
+      EXPECT(fabs(fs - patch.creep.force_y) <= 1e-9 * fabs(patch.creep.force_y));
+      EXPECT(patch.creep.force_y < 0); /* against eta > 0 on the rail */
+      for (int c = 0; c < 3; ++c) {
+        const double creep = -(patch.creep.force_x * patch.e_x[c] + patch.creep.force_y * patch.t_s[c]);
+        EXPECT(fabs(patch.creep_force[c] - creep) <= 1e-9 * patch.normal_force);
+        EXPECT(fabs(patch.force[c] - (-patch.normal_force * patch.normal[c] + creep)) <= 1e-9 * patch.normal_force);
+      }
+      lateral += patch.force[1];
+      free(traction_x);
+      free(traction_s);
+    }
+  }
+  EXPECT(fabs(lateral - force[1]) <= 1e-9 * fabs(force[2]));
+  const fastnorm_velocity standing = {0, 0, 0, 0, 0, 0};
+  expect_error(fastnorm_wheelset_evaluate_moving(model, &pose, &standing, force, NULL), "velocity.forward");
+  expect_error(fastnorm_wheelset_evaluate_moving(model, &pose, NULL, force, NULL), "velocity");
+  fastnorm_wheelset_destroy(model);
+  options.friction = -1;
+  expect_error(fastnorm_wheelset_create(&options, &model), "friction");
+}
+
 /* CONTACT's large-spin Hertz example (docs/tangential.md §5): NORM in force control, then
  * steady rolling; CONTACT's exact answer is Fs = -14940 N, Mz = -48.21 N m, 356 elements in
  * adhesion and 920 in slip. */
@@ -298,6 +371,7 @@ int main(int argc, char** argv) {
   peer_case_through_the_api(argv[1], argv[2]);
   bad_input_is_named();
   wheelset_equilibrium_and_time_step();
+  wheelset_creep_forces();
   steady_rolling_meets_contact();
   if (failures) fprintf(stderr, "%d checks failed\n", failures);
   return failures ? 1 : 0;

@@ -131,6 +131,22 @@ const wr::PatchContact& patch_of(const fastnorm_wheelset* model, int wheel, int 
   return *patches[static_cast<std::size_t>(patch)];
 }
 
+fastnorm_tangential_result tangential_to_c(const fastnorm::TangentialSolution<double>& answer) {
+  return {static_cast<int>(answer.status),
+          answer.sweeps,
+          static_cast<int>(answer.adhesion_elements),
+          static_cast<int>(answer.slip_elements),
+          answer.force_x,
+          answer.force_y,
+          answer.spin_moment,
+          answer.frictional_power_per_speed,
+          answer.residual};
+}
+
+fastnorm_creepage creepage_to_c(const fastnorm::Creepage<double>& creepage) {
+  return {creepage.longitudinal, creepage.lateral, creepage.spin, creepage.spin_centre_x, creepage.spin_centre_y};
+}
+
 // options.max_iterations of the C structs: 0 keeps the solver's default.
 void apply_max_iterations(int max_iterations, fastnorm::SolverSpec<double>& spec) {
   FASTNORM_CHECK(max_iterations >= 0, fastnorm::describe("options.max_iterations must be >= 0", max_iterations));
@@ -259,15 +275,7 @@ int fastnorm_steady_rolling(const fastnorm_grid* grid, const fastnorm_material* 
         rolling == 1 ? fastnorm::RollingDirection::positive_x : fastnorm::RollingDirection::negative_x);
     Eigen::Map<Eigen::VectorXd>(traction_x, grid_value.size()) = answer.traction_x;
     Eigen::Map<Eigen::VectorXd>(traction_y, grid_value.size()) = answer.traction_y;
-    *result = fastnorm_tangential_result{static_cast<int>(answer.status),
-                                         answer.sweeps,
-                                         static_cast<int>(answer.adhesion_elements),
-                                         static_cast<int>(answer.slip_elements),
-                                         answer.force_x,
-                                         answer.force_y,
-                                         answer.spin_moment,
-                                         answer.frictional_power_per_speed,
-                                         answer.residual};
+    *result = tangential_to_c(answer);
   });
 }
 
@@ -386,27 +394,52 @@ int fastnorm_wheelset_create(const fastnorm_wheelset_options* options, fastnorm_
     contact.stiffness = options->stiffness != 0;
     apply_max_iterations(options->max_iterations, contact.solver);
     contact.distance.tolerance = options->distance_tolerance;
+    FASTNORM_CHECK(options->friction >= 0, fastnorm::describe("options.friction must be >= 0 (0: none)", options->friction));
+    if (options->friction > 0) contact.creep.friction = options->friction;
     *model = new fastnorm_wheelset{wr::WheelsetContact<>(setup.track(), setup.wheelset(), contact), {}, {}, {}};
   });
 }
 
 void fastnorm_wheelset_destroy(fastnorm_wheelset* model) { delete model; }
 
+namespace {
+
+// An evaluate of the C API, with velocities or without: the patches to read, the totals
+// and the status kept.
+void evaluate_into(fastnorm_wheelset* model, const fastnorm_pose* pose, const fastnorm_velocity* velocity,
+                   double* force, double* moment) {
+  require_pointer(model, "model");
+  require_pointer(pose, "pose");
+  model->equilibrium.reset();
+  for (auto& patches : model->patches) patches.clear();
+  model->step = {};
+  const wr::WheelsetPose at{pose->y, pose->z, pose->roll, pose->yaw};
+  const auto& result =
+      velocity ? model->model.evaluate(at, wr::WheelsetVelocity{velocity->forward, velocity->lateral, velocity->vertical,
+                                                                velocity->roll_rate, velocity->yaw_rate,
+                                                                velocity->pitch_rate})
+               : model->model.evaluate(at);
+  for (std::size_t wheel = 0; wheel < 2; ++wheel) {
+    for (const auto& patch : result.wheels[wheel].patches) model->patches[wheel].push_back(&patch);
+  }
+  if (force) copy3(result.force, force);
+  if (moment) copy3(result.moment, moment);
+  model->step = result.status;
+  if (!result.ok()) throw patch_failed(result.status.message);
+}
+
+}  // namespace
+
 int fastnorm_wheelset_evaluate(fastnorm_wheelset* model, const fastnorm_pose* pose, double* force, double* moment) {
-  return guarded("fastnorm_wheelset_evaluate", [&] {
-    require_pointer(model, "model");
-    require_pointer(pose, "pose");
-    model->equilibrium.reset();
-    for (auto& patches : model->patches) patches.clear();
-    model->step = {};
-    const auto& result = model->model.evaluate({pose->y, pose->z, pose->roll, pose->yaw});
-    for (std::size_t wheel = 0; wheel < 2; ++wheel) {
-      for (const auto& patch : result.wheels[wheel].patches) model->patches[wheel].push_back(&patch);
-    }
-    if (force) copy3(result.force, force);
-    if (moment) copy3(result.moment, moment);
-    model->step = result.status;
-    if (!result.ok()) throw patch_failed(result.status.message);
+  return guarded("fastnorm_wheelset_evaluate",
+                 [&] { evaluate_into(model, pose, nullptr, force, moment); });
+}
+
+int fastnorm_wheelset_evaluate_moving(fastnorm_wheelset* model, const fastnorm_pose* pose,
+                                      const fastnorm_velocity* velocity, double* force, double* moment) {
+  return guarded("fastnorm_wheelset_evaluate_moving", [&] {
+    require_pointer(velocity, "velocity");
+    evaluate_into(model, pose, velocity, force, moment);
   });
 }
 
@@ -466,6 +499,9 @@ int fastnorm_wheelset_patch(const fastnorm_wheelset* model, int wheel, int patch
     value.approach = contact.approach;
     value.max_pressure = contact.max_pressure;
     value.stiffness = contact.stiffness;
+    value.creepage = creepage_to_c(contact.creepage);
+    value.creep = tangential_to_c(contact.traction);
+    copy3(contact.creep_force, value.creep_force);
     *out = value;
   });
 }
@@ -475,6 +511,20 @@ int fastnorm_wheelset_patch_pressure(const fastnorm_wheelset* model, int wheel, 
     require_pointer(pressure, "pressure");
     const auto& values = patch_of(model, wheel, patch).solution.pressure;
     Eigen::Map<Eigen::VectorXd>(pressure, values.size()) = values;
+  });
+}
+
+int fastnorm_wheelset_patch_traction(const fastnorm_wheelset* model, int wheel, int patch, double* traction_x,
+                                     double* traction_s) {
+  return guarded("fastnorm_wheelset_patch_traction", [&] {
+    require_pointer(traction_x, "traction_x");
+    require_pointer(traction_s, "traction_s");
+    const auto& contact = patch_of(model, wheel, patch);
+    const auto& traction = contact.traction;
+    FASTNORM_CHECK(traction.traction_x.size() == contact.patch.grid.size(),
+                   "the patch has no tractions: evaluate with fastnorm_wheelset_evaluate_moving");
+    Eigen::Map<Eigen::VectorXd>(traction_x, traction.traction_x.size()) = traction.traction_x;
+    Eigen::Map<Eigen::VectorXd>(traction_s, traction.traction_y.size()) = traction.traction_y;
   });
 }
 

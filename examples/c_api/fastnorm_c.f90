@@ -59,10 +59,15 @@ module fastnorm_c
     type(fastnorm_material) :: material
     integer(c_int) :: elements, stiffness, max_iterations
     real(c_double) :: distance_tolerance
+    real(c_double) :: friction  ! mu of the creep forces of fastnorm_wheelset_evaluate_moving; 0: none
   end type
 
   type, bind(c) :: fastnorm_pose
     real(c_double) :: y, z, roll, yaw
+  end type
+
+  type, bind(c) :: fastnorm_velocity
+    real(c_double) :: forward, lateral, vertical, roll_rate, yaw_rate, pitch_rate
   end type
 
   type, bind(c) :: fastnorm_patch
@@ -70,6 +75,9 @@ module fastnorm_c
     type(fastnorm_grid) :: grid
     real(c_double) :: reference(3), e_x(3), t_s(3), normal(3), centre(3), pressure_centre(3)
     real(c_double) :: profile_y, normal_force, force(3), moment(3), contact_angle, approach, max_pressure, stiffness
+    type(fastnorm_creepage) :: creepage          ! after fastnorm_wheelset_evaluate_moving
+    type(fastnorm_tangential_result) :: creep    ! creep forces on the rail, patch frame
+    real(c_double) :: creep_force(3)             ! on the wheel, track frame
   end type
 
   type, bind(c) :: fastnorm_step_status
@@ -207,6 +215,13 @@ module fastnorm_c
       type(fastnorm_pose), intent(in) :: pose
       real(c_double), intent(out) :: force(3), moment(3)
     end function
+    integer(c_int) function fastnorm_wheelset_evaluate_moving(model, pose, velocity, force, moment) bind(c)
+      import :: c_int, c_ptr, c_double, fastnorm_pose, fastnorm_velocity
+      type(c_ptr), value :: model
+      type(fastnorm_pose), intent(in) :: pose
+      type(fastnorm_velocity), intent(in) :: velocity
+      real(c_double), intent(out) :: force(3), moment(3)
+    end function
     integer(c_int) function fastnorm_wheelset_step_status(model, status) bind(c)
       import :: c_int, c_ptr, fastnorm_step_status
       type(c_ptr), value :: model
@@ -233,6 +248,12 @@ module fastnorm_c
       type(c_ptr), value :: model
       integer(c_int), value :: wheel, patch
       real(c_double), intent(out) :: pressure(*)
+    end function
+    integer(c_int) function fastnorm_wheelset_patch_traction(model, wheel, patch, traction_x, traction_s) bind(c)
+      import :: c_int, c_ptr, c_double
+      type(c_ptr), value :: model
+      integer(c_int), value :: wheel, patch
+      real(c_double), intent(out) :: traction_x(*), traction_s(*)
     end function
     integer(c_int) function fastnorm_wheelset_equilibrium(model, load, y, yaw, result) bind(c)
       import :: c_int, c_ptr, c_double, fastnorm_equilibrium

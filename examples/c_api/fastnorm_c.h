@@ -165,6 +165,8 @@ typedef struct fastnorm_wheelset_options {
   int max_iterations;         /* of each patch solve, as in fastnorm_solver_options; 0: the default */
   double distance_tolerance;  /* h interpolated along rows within this (m, default 1e-10, >= 0);
                                  0: exact at every element (docs/wheel-rail.md §4, item 7) */
+  double friction;            /* Coulomb's mu of every patch for the creep forces of
+                                 fastnorm_wheelset_evaluate_moving (> 0); 0: none (default) */
 } fastnorm_wheelset_options;
 
 /* Fills the defaults: "norm", S1002 on UIC60, radius 0.45 m, gauge 1.435 m, cant 1/40,
@@ -177,6 +179,13 @@ FASTNORM_C_API void fastnorm_wheelset_options_default(fastnorm_wheelset_options*
 typedef struct fastnorm_pose {
   double y, z, roll, yaw;
 } fastnorm_pose;
+
+/* The wheelset's velocities, the rates of its pose (m/s, rad/s; docs/wheel-rail.md §10):
+ * forward speed V along the track (not 0), dy/dt, dz/dt, roll and yaw rates, and the
+ * rotation rate about the axle (-V/r rolling without slip on radius r; z is down). */
+typedef struct fastnorm_velocity {
+  double forward, lateral, vertical, roll_rate, yaw_rate, pitch_rate;
+} fastnorm_velocity;
 
 /* How a patch relates to the patches of its wheel at the previous evaluate. */
 enum {
@@ -205,12 +214,20 @@ typedef struct fastnorm_patch {
   double pressure_centre[3];/* the centroid of the pressure in the tangent plane (m) */
   double profile_y;         /* wheel profile coordinate y_w of the reference point (m) */
   double normal_force;      /* Fn (N) */
-  double force[3];          /* the normal force on the wheel, -Fn n, track frame (N) */
+  double force[3];          /* the contact force on the wheel, track frame (N): -Fn n, plus creep_force */
   double moment[3];         /* its moment about the wheelset centre (N m) */
   double contact_angle;     /* of the normal from the vertical, + towards the track centre (rad) */
   double approach;          /* rigid interpenetration, -min h (m) */
   double max_pressure;      /* Pa */
   double stiffness;         /* dFn/d(approach) (N/m); NaN when not asked for */
+  /* After fastnorm_wheelset_evaluate_moving (else zero, creep.status FASTNORM_NOT_SOLVED): the
+   * creepages of the rail against the wheel at reference (the spin centre), the creep
+   * forces on the rail in the patch frame (creep.force_x = Fx along e_x, creep.force_y = Fs
+   * along t_s, creep.spin_moment = Mn about reference; FASTSIM, sweeps 1), and the creep
+   * force on the wheel, -(Fx e_x + Fs t_s), track frame (N). */
+  fastnorm_creepage creepage;
+  fastnorm_tangential_result creep;
+  double creep_force[3];
 } fastnorm_patch;
 
 /* How the last fastnorm_wheelset_evaluate ended (fastnorm::wheelrail::StepStatus). A zeroed
@@ -233,6 +250,11 @@ FASTNORM_C_API void fastnorm_wheelset_destroy(fastnorm_wheelset* model);
  * next evaluate. FASTNORM_ERROR_PATCH_FAILED when a patch solve gave no usable answer. */
 FASTNORM_C_API int fastnorm_wheelset_evaluate(fastnorm_wheelset* model, const fastnorm_pose* pose, double* force,
                                               double* moment);
+/* The same with the wheelset moving at velocity: every patch's creepages and creep forces as
+ * well (FASTSIM, docs/wheel-rail.md §10), which force and moment include; needs
+ * options.friction > 0. */
+FASTNORM_C_API int fastnorm_wheelset_evaluate_moving(fastnorm_wheelset* model, const fastnorm_pose* pose,
+                                                     const fastnorm_velocity* velocity, double* force, double* moment);
 FASTNORM_C_API int fastnorm_wheelset_step_status(const fastnorm_wheelset* model, fastnorm_step_status* status);
 /* The next evaluate starts cold: no previous patches, contact sets or search (storage kept);
  * the patches and status read as after create. */
@@ -242,6 +264,10 @@ FASTNORM_C_API int fastnorm_wheelset_patch(const fastnorm_wheelset* model, int w
 /* The patch's pressures (Pa), grid.mx*grid.my values, written. */
 FASTNORM_C_API int fastnorm_wheelset_patch_pressure(const fastnorm_wheelset* model, int wheel, int patch,
                                                     double* pressure);
+/* The patch's tractions on the rail along e_x and t_s (Pa), grid.mx*grid.my values each,
+ * written; after fastnorm_wheelset_evaluate_moving (else FASTNORM_ERROR_ARGUMENT). */
+FASTNORM_C_API int fastnorm_wheelset_patch_traction(const fastnorm_wheelset* model, int wheel, int patch,
+                                                    double* traction_x, double* traction_s);
 
 /* Static equilibrium: z and roll such that the rails carry load (N) at lateral shift y (m)
  * and yaw (rad). */

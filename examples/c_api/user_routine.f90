@@ -2,8 +2,9 @@
 ! calling fastnorm's C API through the module fastnorm_c (fastnorm_c.f90, shipped with the
 ! C library; docs/bindings.md). The program finds the
 ! static equilibrium of a wheelset under 200 kN at y = 3 mm, then steps it through a small
-! lateral oscillation calling the user routine at every step, as an integrator would; and
-! the creep forces of CONTACT's large-spin Hertz example by steady rolling.
+! lateral oscillation at 30 m/s calling the user routine at every step, as an integrator
+! would (contact and creep forces); and the creep forces of CONTACT's large-spin Hertz
+! example by steady rolling.
 ! Run as a CTest test: it stops with an error when a call fails or a force is implausible.
 module wheel_rail_contact
   use fastnorm_c
@@ -20,16 +21,20 @@ contains
     call fastnorm_wheelset_options_default(options)
     options%solver = c_loc(solver_name)
     options%elements = 30
+    options%friction = 0.3d0
     if (fastnorm_wheelset_create(options, model) /= fastnorm_ok) error stop "create: " // fastnorm_string(fastnorm_last_error())
   end subroutine
 
   ! The user routine: the contact force (N) and moment (N m) on the wheelset at its pose
-  ! (m, rad; track frame, z down).
-  subroutine contact_user_routine(y, z, roll, yaw, force, moment)
-    real(c_double), intent(in) :: y, z, roll, yaw
+  ! (m, rad; track frame, z down) moving forwards at 30 m/s, rolling, with lateral velocity
+  ! vy (m/s): normal and creep forces.
+  subroutine contact_user_routine(y, z, roll, yaw, vy, force, moment)
+    real(c_double), intent(in) :: y, z, roll, yaw, vy
     real(c_double), intent(out) :: force(3), moment(3)
     call ensure_model()
-    if (fastnorm_wheelset_evaluate(model, fastnorm_pose(y, z, roll, yaw), force, moment) /= fastnorm_ok) then
+    if (fastnorm_wheelset_evaluate_moving(model, fastnorm_pose(y, z, roll, yaw), &
+                                          fastnorm_velocity(30d0, vy, 0d0, 0d0, 0d0, -30d0 / 0.45d0), force, &
+                                          moment) /= fastnorm_ok) then
       error stop "evaluate: " // fastnorm_string(fastnorm_last_error())
     end if
   end subroutine
@@ -42,6 +47,7 @@ program user_routine
   real(c_double), parameter :: load = 2.0d5, y0 = 3.0d-3
   type(fastnorm_equilibrium) :: found
   real(c_double) :: force(3), moment(3), y
+  type(fastnorm_patch) :: patch
   integer :: step
 
   call ensure_model()
@@ -52,16 +58,19 @@ program user_routine
   print '(a, es12.5, a, es12.5, a, es12.5, a)', "equilibrium: z = ", found%pose%z, " m, roll = ", &
     found%pose%roll, " rad, vertical force ", found%vertical_force, " N"
 
+  ! The equilibrium is the model's own: at its pose the rails carry the load.
+  if (fastnorm_wheelset_evaluate(model, found%pose, force, moment) /= fastnorm_ok) error stop "evaluate"
+  if (abs(-force(3) / load - 1) > 1.0d-6) error stop "vertical force at the equilibrium is off"
   do step = 0, 20
     y = y0 + 0.5d-3 * sin(0.3d0 * step)
-    call contact_user_routine(y, found%pose%z, found%pose%roll, 0.0d0, force, moment)
-    if (step == 0) then
-      ! The equilibrium is the model's own: at its pose the rails carry the load.
-      if (abs(-force(3) / load - 1) > 1.0d-6) error stop "vertical force at the equilibrium is off"
-    end if
+    call contact_user_routine(y, found%pose%z, found%pose%roll, 0.0d0, 0.15d0 * cos(0.3d0 * step), force, moment)
     if (.not. (force(3) < 0 .and. abs(force(3)) < 10 * load)) error stop "implausible vertical force"
-    print '(a, i3, a, f7.4, a, es12.5, a, es12.5, a)', "step ", step, ": y = ", 1d3 * y, " mm, Fy = ", &
-      force(2), " N, Fz = ", force(3), " N"
+    if (fastnorm_wheelset_patch(model, 1_c_int, 0_c_int, patch) /= fastnorm_ok) error stop "patch"
+    if (patch%creep%status /= fastnorm_converged) error stop "no creep forces"
+    if (hypot(patch%creep%force_x, patch%creep%force_y) > 0.3d0 * patch%normal_force * (1 + 1d-12)) &
+      error stop "creep force above mu Fn"
+    print '(a, i3, a, f7.4, a, es12.5, a, es12.5, a, es12.5, a)', "step ", step, ": y = ", 1d3 * y, " mm, Fy = ", &
+      force(2), " N, Fz = ", force(3), " N, right Fs = ", patch%creep%force_y, " N"
   end do
   call fastnorm_wheelset_destroy(model)
   call creep_forces_of_a_hertz_contact()

@@ -112,20 +112,8 @@ struct PyTangentialSolution {
   int sweeps = 0;
 };
 
-PyTangentialSolution solve_steady_rolling(const Grid& grid, const Material& material, const PySolution& normal,
-                                          double friction, double creepage_x, double creepage_y, double spin,
-                                          const std::string& rolling) {
-  FASTNORM_CHECK(rolling == "+x" || rolling == "-x", "rolling must be '+x' or '-x', not '" + rolling + "'");
-  fastnorm::Creepage<double> creepage;
-  creepage.longitudinal = creepage_x;
-  creepage.lateral = creepage_y;
-  creepage.spin = spin;
-  const auto direction = rolling == "+x" ? fastnorm::RollingDirection::positive_x : fastnorm::RollingDirection::negative_x;
-  fastnorm::TangentialSolution<double> answer;
-  {
-    py::gil_scoped_release release;
-    answer = fastnorm::solve_steady_rolling(grid, material, normal.solution, friction, creepage, direction);
-  }
+// A tangential answer (the exact path's or FASTSIM's) on `grid`, copied out.
+PyTangentialSolution to_python(const Grid& grid, const fastnorm::TangentialSolution<double>& answer) {
   PyTangentialSolution out;
   out.status = fastnorm::to_string(answer.status);
   out.message = answer.message;
@@ -144,6 +132,23 @@ PyTangentialSolution solve_steady_rolling(const Grid& grid, const Material& mate
   out.slip_elements = answer.slip_elements;
   out.sweeps = answer.sweeps;
   return out;
+}
+
+PyTangentialSolution solve_steady_rolling(const Grid& grid, const Material& material, const PySolution& normal,
+                                          double friction, double creepage_x, double creepage_y, double spin,
+                                          const std::string& rolling) {
+  FASTNORM_CHECK(rolling == "+x" || rolling == "-x", "rolling must be '+x' or '-x', not '" + rolling + "'");
+  fastnorm::Creepage<double> creepage;
+  creepage.longitudinal = creepage_x;
+  creepage.lateral = creepage_y;
+  creepage.spin = spin;
+  const auto direction = rolling == "+x" ? fastnorm::RollingDirection::positive_x : fastnorm::RollingDirection::negative_x;
+  fastnorm::TangentialSolution<double> answer;
+  {
+    py::gil_scoped_release release;
+    answer = fastnorm::solve_steady_rolling(grid, material, normal.solution, friction, creepage, direction);
+  }
+  return to_python(grid, answer);
 }
 
 // None: approach control; a number: force control (N).
@@ -248,6 +253,10 @@ struct PyPatch {
   Eigen::Index contact_elements = 0;
   bool flange_climb = false;
   std::string history;
+  // With velocities (docs/wheel-rail.md §10): creepages at reference, creep forces, else None.
+  std::optional<PyTangentialSolution> traction;
+  double creepage_x = 0, creepage_y = 0, spin = 0;
+  py::array_t<double> creep_force;  // on the wheel, track frame (N)
 };
 
 PyPatch to_python(const wr::PatchContact& contact, const wr::Wheelset& wheelset) {
@@ -272,6 +281,11 @@ PyPatch to_python(const wr::PatchContact& contact, const wr::Wheelset& wheelset)
   out.max_pressure = contact.max_pressure;
   out.flange_climb = wheelset.at_flange_climb(contact.profile_y);
   out.history = wr::to_string(contact.history);
+  if (contact.traction.status != fastnorm::Status::not_solved) out.traction = to_python(contact.patch.grid, contact.traction);
+  out.creepage_x = contact.creepage.longitudinal;
+  out.creepage_y = contact.creepage.lateral;
+  out.spin = contact.creepage.spin;
+  out.creep_force = vector3(contact.creep_force);
   return out;
 }
 
@@ -328,12 +342,12 @@ class PyWheelset {
   PyWheelset(const wr::WheelsetOnTrack& setup, const wr::WheelsetContactOptions& options)
       : model_(setup.track(), setup.wheelset(), options) {}
 
-  PyWheelsetResult evaluate(const wr::WheelsetPose& pose) {
+  PyWheelsetResult evaluate(const wr::WheelsetPose& pose, const std::optional<wr::WheelsetVelocity>& velocity) {
     std::optional<wr::WheelsetContactResult> result;
     {
       py::gil_scoped_release released;
       const std::lock_guard<std::mutex> lock(calls_);
-      result = model_.evaluate(pose);
+      result = velocity ? model_.evaluate(pose, *velocity) : model_.evaluate(pose);
     }
     PyWheelsetResult out;
     out.pose = result->pose;
@@ -399,7 +413,8 @@ std::unique_ptr<PyWheelset> make_wheelset(const std::string& solver, Eigen::Inde
                                           std::optional<std::string> wheel_profile,
                                           std::optional<std::string> rail_profile, double nominal_radius,
                                           double gauge, double cant, const Material& material, bool stiffness,
-                                          std::optional<int> max_iterations, double distance_tolerance) {
+                                          std::optional<int> max_iterations, double distance_tolerance,
+                                          std::optional<double> friction) {
   wr::WheelsetOnTrack setup;
   setup.wheel_profile = wheel_profile.value_or("");
   setup.rail_profile = rail_profile.value_or("");
@@ -412,6 +427,7 @@ std::unique_ptr<PyWheelset> make_wheelset(const std::string& solver, Eigen::Inde
   options.material = material;
   options.stiffness = stiffness;
   options.distance.tolerance = distance_tolerance;
+  options.creep.friction = friction;
   return std::make_unique<PyWheelset>(setup, options);
 }
 
@@ -600,6 +616,28 @@ void bind_wheelset(py::module_& m) {
                ", yaw_rad=" + number(pose.yaw) + ")";
       });
 
+  py::class_<wr::WheelsetVelocity>(m, "Velocity",
+                                   "The wheelset's velocities, the rates of its pose (docs/wheel-rail.md §10): forward "
+                                   "speed V along the track (not 0), lateral and vertical (m/s), roll, yaw and pitch "
+                                   "rates (rad/s; pitch -V/r rolling without slip on radius r, z down).")
+      .def(py::init([](double forward, double lateral, double vertical, double roll_rate, double yaw_rate,
+                       double pitch_rate) {
+             return wr::WheelsetVelocity{forward, lateral, vertical, roll_rate, yaw_rate, pitch_rate};
+           }),
+           py::kw_only(), "forward_m_per_s"_a, "lateral_m_per_s"_a = 0.0, "vertical_m_per_s"_a = 0.0,
+           "roll_rate_rad_per_s"_a = 0.0, "yaw_rate_rad_per_s"_a = 0.0, "pitch_rate_rad_per_s"_a = 0.0)
+      .def_readonly("forward_m_per_s", &wr::WheelsetVelocity::forward)
+      .def_readonly("lateral_m_per_s", &wr::WheelsetVelocity::lateral)
+      .def_readonly("vertical_m_per_s", &wr::WheelsetVelocity::vertical)
+      .def_readonly("roll_rate_rad_per_s", &wr::WheelsetVelocity::roll_rate)
+      .def_readonly("yaw_rate_rad_per_s", &wr::WheelsetVelocity::yaw_rate)
+      .def_readonly("pitch_rate_rad_per_s", &wr::WheelsetVelocity::pitch_rate)
+      .def("__repr__", [](const wr::WheelsetVelocity& v) {
+        return "Velocity(forward_m_per_s=" + number(v.forward) + ", lateral_m_per_s=" + number(v.lateral) +
+               ", vertical_m_per_s=" + number(v.vertical) + ", roll_rate_rad_per_s=" + number(v.roll_rate) +
+               ", yaw_rate_rad_per_s=" + number(v.yaw_rate) + ", pitch_rate_rad_per_s=" + number(v.pitch_rate) + ")";
+      });
+
   py::class_<PyPatch>(m, "Patch", "One contact patch. Track frame: x forward, y right, z down.")
       .def_readonly("grid", &PyPatch::grid, "the patch's grid in its tangent plane")
       .def_readonly("solution", &PyPatch::solution, "pressures on grid and the solve's status")
@@ -611,7 +649,8 @@ void bind_wheelset(py::module_& m) {
       .def_readonly("normal", &PyPatch::normal, "n, the normal into the rail")
       .def_readonly("contact_elements", &PyPatch::contact_elements)
       .def_readonly("normal_force_n", &PyPatch::normal_force, "Fn (N)")
-      .def_readonly("force_n", &PyPatch::force, "the normal force on the wheel, track frame (N)")
+      .def_readonly("force_n", &PyPatch::force, "the contact force on the wheel, track frame (N): the normal force, "
+                    "plus creep_force_n with a velocity")
       .def_readonly("moment_nm", &PyPatch::moment, "its moment about the wheelset centre (N m)")
       .def_readonly("centre_m", &PyPatch::centre, "the contact reference point (m)")
       .def_readonly("pressure_centre_m", &PyPatch::pressure_centre, "the centroid of the pressure (m)")
@@ -624,6 +663,15 @@ void bind_wheelset(py::module_& m) {
       .def_readonly("flange_climb", &PyPatch::flange_climb, "the reference point is on the flange's steepest flank "
                                                             "or beyond")
       .def_readonly("history", &PyPatch::history, "'continued', 'appeared', 'merged' or 'split' since the last call")
+      .def_readonly("traction", &PyPatch::traction,
+                    "with a velocity: the tractions on the rail in the patch frame (x along e_x, y along t_s), "
+                    "their force_x_n = Fx, force_y_n = Fs and spin_moment_nm = Mn about reference_m, the areas "
+                    "(FASTSIM, docs/wheel-rail.md §10); None without")
+      .def_readonly("creepage_x", &PyPatch::creepage_x, "xi of the rail against the wheel at reference_m (0 without velocity)")
+      .def_readonly("creepage_y", &PyPatch::creepage_y, "eta, along t_s")
+      .def_readonly("spin_per_m", &PyPatch::spin, "phi (rad/m) about the normal")
+      .def_readonly("creep_force_n", &PyPatch::creep_force,
+                    "the creep force on the wheel, -(Fx e_x + Fs t_s), track frame (N); included in force_n")
       .def("__repr__", [](const PyPatch& patch) {
         return "Patch(normal_force_n=" + number(patch.normal_force) + ", contact_angle_rad=" +
                number(patch.contact_angle) + ", profile_y_m=" + number(patch.profile_y) + ", grid=" +
@@ -709,23 +757,29 @@ void bind_wheelset(py::module_& m) {
                          "The contact model of one wheelset on its track (docs/wheel-rail.md §9), kept between "
                          "calls. Profiles: files (SIMPACK .prw/.prr or 'y z' in mm), None for S1002 and UIC60. "
                          "elements: across the largest patch. distance_tolerance_m: h interpolated along rows within it "
-                         "(0: exact at every element). Calls on one model run one at a time.")
+                         "(0: exact at every element). friction: Coulomb's mu of every patch, for creep forces "
+                         "when evaluate is given a Velocity. Calls on one model run one at a time.")
       .def(py::init(&make_wheelset), py::kw_only(), "solver"_a = "norm", "elements"_a = 60,
            "wheel_profile"_a = py::none(), "rail_profile"_a = py::none(),
            "nominal_radius_m"_a = wr::WheelsetLayout().nominal_radius, "gauge_m"_a = wr::TrackLayout().gauge,
            "cant_rad"_a = wr::TrackLayout().cant, "material"_a = Material::steel(), "stiffness"_a = true,
-           "max_iterations"_a = py::none(), "distance_tolerance_m"_a = wr::DistanceAccuracy().tolerance)
+           "max_iterations"_a = py::none(), "distance_tolerance_m"_a = wr::DistanceAccuracy().tolerance,
+           "friction"_a = py::none())
       .def(
           "evaluate",
-          [](PyWheelset& model, double y, double z, double roll, double yaw) {
-            return model.evaluate({y, z, roll, yaw});
-          },
+          [](PyWheelset& model, double y, double z, double roll, double yaw,
+             const std::optional<wr::WheelsetVelocity>& velocity) { return model.evaluate({y, z, roll, yaw}, velocity); },
           py::kw_only(), "lateral_shift_m"_a = 0.0, "vertical_m"_a = 0.0, "roll_rad"_a = 0.0, "yaw_rad"_a = 0.0,
-          "Every wheel's patches, forces and stiffness at a pose (see Pose). result.status says whether every "
+          "velocity"_a = py::none(),
+          "Every wheel's patches, forces and stiffness at a pose (see Pose); with a Velocity (and the model's "
+          "friction), every patch's creepages and creep forces as well. result.status says whether every "
           "patch solve gave a usable answer, and if not which.")
       .def(
-          "evaluate", [](PyWheelset& model, const wr::WheelsetPose& pose) { return model.evaluate(pose); }, "pose"_a,
-          "The same at a Pose, e.g. an Equilibrium's.")
+          "evaluate",
+          [](PyWheelset& model, const wr::WheelsetPose& pose, const std::optional<wr::WheelsetVelocity>& velocity) {
+            return model.evaluate(pose, velocity);
+          },
+          "pose"_a, py::kw_only(), "velocity"_a = py::none(), "The same at a Pose, e.g. an Equilibrium's.")
       .def("equilibrium", &PyWheelset::equilibrium, py::kw_only(), "load_n"_a, "lateral_shift_m"_a = 0.0,
            "yaw_rad"_a = 0.0, "force_tolerance"_a = wr::EquilibriumOptions().force_tolerance,
            "max_iterations"_a = wr::EquilibriumOptions().max_iterations,

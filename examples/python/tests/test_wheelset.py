@@ -108,7 +108,8 @@ def test_every_result_object_prints_its_key_figures(model):
     patch = result.wheels[1].patches[0]
     texts = [repr(result), repr(result.status), repr(result.wheels[1]), repr(patch), repr(found), repr(found.pose),
              repr(patch.solution), repr(model), repr(patch.grid), repr(fastnorm.Material(2.1e11, 0.3)),
-             repr(fastnorm.Solver("norm", patch.grid, fastnorm.Material(2.1e11, 0.3)))]
+             repr(fastnorm.Solver("norm", patch.grid, fastnorm.Material(2.1e11, 0.3))),
+             repr(fastnorm.Velocity(forward_m_per_s=30.0))]
     for text in texts:
         assert " object at 0x" not in text
     assert repr(result).startswith("WheelsetResult(patches=")
@@ -116,3 +117,40 @@ def test_every_result_object_prints_its_key_figures(model):
     assert repr(found).startswith("Equilibrium(status='converged'")
     assert "normal_force_n=" in repr(patch)
     assert repr(model).startswith("WheelsetContact(solver='elliptic'")
+
+
+def test_a_moving_wheelset_gets_creep_forces_on_every_patch():
+    """With a Velocity every patch gets its creepages and FASTSIM's creep forces
+    (docs/wheel-rail.md §10), included in its force."""
+    moving = fastnorm.WheelsetContact(solver="elliptic", elements=30, friction=0.3)
+    pose = moving.equilibrium(load_n=200e3, yaw_rad=3e-3).pose
+    velocity = fastnorm.Velocity(forward_m_per_s=30.0, pitch_rate_rad_per_s=-30.0 / 0.45)
+    still = moving.evaluate(pose)
+    result = moving.evaluate(pose, velocity=velocity)
+    assert result.ok
+    for wheel, alone in zip(result.wheels, still.wheels):
+        assert wheel.patches
+        for patch, normal in zip(wheel.patches, alone.patches):
+            assert normal.traction is None
+            assert patch.traction.ok
+            assert 2e-3 < patch.creepage_y < 4e-3  # yaw 3 mrad
+            traction = patch.traction
+            area = patch.grid.dx_m * patch.grid.dy_m
+            assert traction.traction_x_pa.sum() * area == pytest.approx(traction.force_x_n, rel=1e-9)
+            assert traction.traction_y_pa.sum() * area == pytest.approx(traction.force_y_n, rel=1e-9)
+            assert traction.force_y_n < 0  # against eta > 0, on the rail
+            creep = -(traction.force_x_n * patch.e_x + traction.force_y_n * patch.t_s)
+            assert np.allclose(patch.creep_force_n, creep, rtol=1e-12, atol=1e-9)
+            assert np.allclose(patch.force_n, normal.force_n + creep, rtol=1e-9, atol=1e-6)
+            assert np.hypot(traction.force_x_n, traction.force_y_n) <= 0.3 * patch.normal_force_n * (1 + 1e-12)
+            assert traction.adhesion_elements > 0 and traction.slip_elements > 0
+
+
+def test_creep_forces_need_friction_and_a_forward_speed():
+    pose = fastnorm.Pose(lateral_shift_m=0.0, vertical_m=0.1e-3, roll_rad=0.0, yaw_rad=0.0)
+    velocity = fastnorm.Velocity(forward_m_per_s=30.0, pitch_rate_rad_per_s=-30.0 / 0.45)
+    with pytest.raises(ValueError, match="creep.friction"):
+        fastnorm.WheelsetContact(solver="elliptic", elements=20).evaluate(pose, velocity=velocity)
+    with pytest.raises(ValueError, match="velocity.forward"):
+        fastnorm.WheelsetContact(solver="elliptic", elements=20, friction=0.3).evaluate(
+            pose, velocity=fastnorm.Velocity(forward_m_per_s=0.0))

@@ -38,6 +38,19 @@ struct WheelsetVelocity {
   double pitch_rate = 0;
 };
 
+/// @throws fastnorm::invalid_argument, naming `who`, for velocities that are not finite or
+///         a forward speed of zero (creepages are velocities over the rolling speed)
+inline void check_velocity(const WheelsetVelocity& velocity, const std::string& who) {
+  const auto finite = [](double value) { return std::isfinite(value); };
+  FASTNORM_CHECK(finite(velocity.lateral) && finite(velocity.vertical) && finite(velocity.roll_rate) &&
+                     finite(velocity.yaw_rate) && finite(velocity.pitch_rate),
+                 who + ": velocity must be finite (lateral, vertical, roll_rate, yaw_rate, pitch_rate)");
+  FASTNORM_CHECK(std::isfinite(velocity.forward) && velocity.forward != 0,
+                 fastnorm::detail::describe(who + ": velocity.forward must be finite and not zero (m/s): creepages "
+                                                  "are velocities over the rolling speed",
+                                            velocity.forward));
+}
+
 /// A patch's creepages and the way it rolls.
 struct PatchKinematics {
   Creepage<double> creepage;   ///< about the reference point: spin centre (0, 0) of the grid
@@ -63,14 +76,7 @@ inline Eigen::Vector3d wheelset_angular_velocity(const WheelsetPose& pose, const
 ///         of zero
 inline PatchKinematics patch_kinematics(const Wheelset& wheelset, const WheelsetPose& pose,
                                         const WheelsetVelocity& velocity, const PatchFrame& frame) {
-  const auto finite = [](double value) { return std::isfinite(value); };
-  FASTNORM_CHECK(finite(velocity.lateral) && finite(velocity.vertical) && finite(velocity.roll_rate) &&
-                     finite(velocity.yaw_rate) && finite(velocity.pitch_rate),
-                 "patch_kinematics: velocity must be finite (lateral, vertical, roll_rate, yaw_rate, pitch_rate)");
-  FASTNORM_CHECK(std::isfinite(velocity.forward) && velocity.forward != 0,
-                 fastnorm::detail::describe("patch_kinematics: velocity.forward must be finite and not zero (m/s): "
-                                            "creepages are velocities over the rolling speed",
-                                            velocity.forward));
+  check_velocity(velocity, "patch_kinematics");
   const Eigen::Vector3d omega = wheelset_angular_velocity(pose, velocity);
   const Eigen::Vector3d arm = frame.reference - wheelset.centre(pose);
   const Eigen::Vector3d turning = detail::cross(omega, arm);

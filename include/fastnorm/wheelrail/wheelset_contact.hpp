@@ -161,7 +161,7 @@ class WheelsetContact {
   /// @throws fastnorm::invalid_argument as evaluate(pose), for velocities that are not finite
   ///         or a forward speed of zero, or when options.creep.friction is not set
   const WheelsetContactResult& evaluate(const WheelsetPose& pose, const WheelsetVelocity& velocity) {
-    check_creep_set();
+    check_creep(velocity);
     return evaluate_both(pose, &velocity);
   }
 
@@ -174,7 +174,7 @@ class WheelsetContact {
   /// The same moving with `velocity`, with creep forces.
   /// @throws fastnorm::invalid_argument as evaluate(pose, velocity)
   const WheelContact& evaluate(const WheelsetPose& pose, const WheelsetVelocity& velocity, Side side) {
-    check_creep_set();
+    check_creep(velocity);
     return evaluate_one(pose, &velocity, side);
   }
 
@@ -239,9 +239,11 @@ class WheelsetContact {
     return wheel;
   }
 
-  void check_creep_set() const {
+  /// Before anything changes: creep forces asked for are possible.
+  void check_creep(const WheelsetVelocity& velocity) const {
     FASTNORM_CHECK(options_.creep.friction.has_value(),
                    "WheelsetContact::evaluate: velocities given, but options.creep.friction is not set");
+    check_velocity(velocity, "WheelsetContact::evaluate");
   }
 
   void choose_element_sizes() {

@@ -2,7 +2,8 @@
 
 Kalker's NORM, a conjugate-gradient solver and the reduced strip-basis solvers of
 Giner-Navarro et al. (Wear 2023) on a regular grid; .case files; the wheelset contact model
-of the time loop and the static equilibrium of a loaded wheelset (S1002 on UIC60 by default).
+of the time loop (with creep forces when given a Velocity) and the static equilibrium of a
+loaded wheelset (S1002 on UIC60 by default); steady rolling with friction.
 
 Units are SI and named in the keywords: m, Pa, N, rad. Arrays over a grid have shape
 (my, mx): row j is strip j, along the rolling direction x. Bad input raises FastnormError,
@@ -27,6 +28,7 @@ from ._fastnorm import (
     Solver,
     StepStatus,
     TangentialSolution,
+    Velocity,
     Wheel,
     WheelsetContact,
     WheelsetResult,
@@ -49,6 +51,7 @@ __all__ = [
     "Solver",
     "StepStatus",
     "TangentialSolution",
+    "Velocity",
     "Wheel",
     "WheelsetContact",
     "WheelsetResult",
