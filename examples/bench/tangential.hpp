@@ -24,6 +24,18 @@
 //
 // The normal problem is solved once by NORM and the solver's tables built once; the times
 // are medians over --repeats solves (FASTSIM's of 100 solves each), interleaved, one thread.
+//
+// With --creep-accuracy, FASTSIM's accuracy against the exact path on each case (issue 29,
+// docs/validation.md §7): the creepages (ξ, η, φ) = s·(10⁻³, 5·10⁻⁴, 0.5 rad/m), μ = 0.3,
+// scaled so that the exact path's adhesion fraction is about 0.2, 0.5, 0.8 and 0.95
+// (bisection on log s over a factor 5 below FASTSIM's scale for the level, 7 exact solves:
+// s within 6 %), FASTSIM at the same creepages; one line per case and level (exact_ms the
+// last bisection solve's), then the largest differences:
+//
+//   creep_accuracy case=<name> target_adhesion=<f> scale=<s> adhesion_fast=<f> adhesion_exact=<f>
+//     dfx=<μFn> dfy=<μFn> dmz=<μFn c> exact_ms=<t>
+//   creep_accuracy_summary patches=<n> max_dfx=<μFn> max_dfy=<μFn> max_dmz=<μFn c>
+//     forces_within_0.05=<k>/<n> moment_within_0.08=<k>/<n>
 #pragma once
 
 #include <fastnorm/fastnorm.hpp>
@@ -124,6 +136,73 @@ inline void bench_tangential(int repeats) {
     creepage.spin = problem.phi;
     time_steady_rolling(problem.name, grid, material, normal, problem.friction, creepage, repeats);
   }
+}
+
+/// FASTSIM against the exact path at four adhesion levels on each case (see the top of
+/// this file).
+inline void bench_creep_accuracy(const std::vector<std::string>& paths) {
+  const double friction = 0.3;
+  const std::vector<double> levels{0.2, 0.5, 0.8, 0.95};
+  double largest_force_x = 0, largest_force_y = 0, largest_moment = 0;
+  int count = 0, forces_within = 0, moment_within = 0;
+  for (const auto& path : paths) {
+    const auto stored = fastnorm::read_case_file(path);
+    const auto normal = fastnorm::NormSolver<>(stored.grid, stored.material).solve(stored.undeformed_distance, stored.loading);
+    const fastnorm::SteadyRollingSolver<> rolling(stored.grid, stored.material);
+    const auto ellipse = fastnorm::equivalent_ellipse(stored.grid, normal);
+    const auto flexibility = fastnorm::kalker_flexibility(ellipse, stored.material);
+    const auto scaled = [](double scale) {
+      fastnorm::Creepage<> creepage;
+      creepage.longitudinal = 1e-3 * scale;
+      creepage.lateral = 5e-4 * scale;
+      creepage.spin = 0.5 * scale;
+      return creepage;
+    };
+    const auto adhesion = [](const fastnorm::TangentialSolution<>& answer) {
+      return static_cast<double>(answer.adhesion_elements) /
+             static_cast<double>(answer.adhesion_elements + answer.slip_elements);
+    };
+    const double scale_force = friction * normal.normal_force, c = std::sqrt(ellipse.a * ellipse.b);
+    for (const double level : levels) {
+      // FASTSIM's scale for the level first (microseconds a solve), then the exact path's by
+      // bisection on log s below it: the exact path adheres less at the same creepages.
+      double low = std::log(1e-4), high = std::log(1e2);  // adhesion falls as s grows
+      for (int step = 0; step < 50; ++step) {
+        const double middle = (low + high) / 2;
+        const auto fast = fastnorm::solve_fastsim(stored.grid, normal, friction, scaled(std::exp(middle)), flexibility);
+        (adhesion(fast) > level ? low : high) = middle;
+      }
+      high = (low + high) / 2, low = high + std::log(0.2);
+      double exact_seconds = 0;
+      fastnorm::TangentialSolution<> exact;
+      for (int step = 0; step < 7; ++step) {
+        const double middle = (low + high) / 2;
+        const auto start = std::chrono::steady_clock::now();
+        exact = rolling.solve(normal, friction, scaled(std::exp(middle)));
+        exact_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        (adhesion(exact) > level ? low : high) = middle;
+      }
+      const double scale = std::exp((low + high) / 2);
+      exact = rolling.solve(normal, friction, scaled(scale));
+      const auto fast = fastnorm::solve_fastsim(stored.grid, normal, friction, scaled(scale), flexibility);
+      const double dfx = (fast.force_x - exact.force_x) / scale_force, dfy = (fast.force_y - exact.force_y) / scale_force;
+      const double dmz = (fast.spin_moment - exact.spin_moment) / (scale_force * c);
+      std::printf("creep_accuracy case=%s target_adhesion=%.2f scale=%.4g adhesion_fast=%.3f adhesion_exact=%.3f "
+                  "dfx=%.4f dfy=%.4f dmz=%.4f exact_ms=%.1f%s\n",
+                  stored.name.c_str(), level, scale, adhesion(fast), adhesion(exact), dfx, dfy, dmz, exact_seconds * 1e3,
+                  exact.ok() ? "" : " exact_not_converged");
+      std::fflush(stdout);
+      largest_force_x = std::max(largest_force_x, std::abs(dfx));
+      largest_force_y = std::max(largest_force_y, std::abs(dfy));
+      largest_moment = std::max(largest_moment, std::abs(dmz));
+      ++count;
+      forces_within += std::abs(dfx) <= 0.05 && std::abs(dfy) <= 0.05 ? 1 : 0;
+      moment_within += std::abs(dmz) <= 0.08 ? 1 : 0;
+    }
+  }
+  std::printf("creep_accuracy_summary patches=%d max_dfx=%.4f max_dfy=%.4f max_dmz=%.4f forces_within_0.05=%d/%d "
+              "moment_within_0.08=%d/%d\n",
+              count, largest_force_x, largest_force_y, largest_moment, forces_within, count, moment_within, count);
 }
 
 }  // namespace fastnorm_bench
