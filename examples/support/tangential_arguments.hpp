@@ -1,8 +1,9 @@
 // The steady-rolling options of the command-line tools (fastnorm-solve, fastnorm-wheelrail):
-// --friction MU [--creepage-x XI] [--creepage-y ETA] [--spin PHI], and the fields a tool
-// prints for a patch's answer (docs/tangential.md §5).
+// --friction MU [--creepage-x XI] [--creepage-y ETA] [--spin PHI] [--tangential exact|fast],
+// and the fields a tool prints for a patch's answer (docs/tangential.md §5, §9).
 #pragma once
 
+#include <fastnorm/fastsim.hpp>
 #include <fastnorm/tangential_solver.hpp>
 
 #include <cstdio>
@@ -15,6 +16,7 @@ namespace fastnorm_example {
 struct TangentialArguments {
   double friction = 0;  // 0: no tangential problem
   double creepage_x = 0, creepage_y = 0, spin = 0;
+  std::string method = "exact";  // the exact path, or "fast": FASTSIM
 
   /// Adds the four options; `lateral` says what y is in this tool.
   void add_to(CommandLine& line, const std::string& lateral) {
@@ -27,15 +29,19 @@ struct TangentialArguments {
                 within(-1, 1));
     line.option("--spin", spin, "PHI", "spin creepage, rad/m, about the grid's origin (--friction)",
                 within(-1000, 1000));
+    line.option("--tangential", method, "exact|fast",
+                "the exact steady-rolling solver (default) or FASTSIM with Kalker's flexibilities of the "
+                "equivalent ellipse (--friction)");
   }
 
-  /// The creepages without --friction are a usage error.
+  /// The creepages or the method without --friction, and an unknown method, are usage errors.
   void check(const CommandLine& line) const {
-    for (const char* creepage : {"--creepage-x", "--creepage-y", "--spin"}) {
+    for (const char* creepage : {"--creepage-x", "--creepage-y", "--spin", "--tangential"}) {
       if (line.given(creepage) && !line.given("--friction")) {
         throw UsageError(std::string(creepage) + " needs --friction MU");
       }
     }
+    if (method != "exact" && method != "fast") throw UsageError("--tangential must be exact or fast, not '" + method + "'");
   }
 
   bool wanted() const { return friction > 0; }
@@ -48,11 +54,14 @@ struct TangentialArguments {
     return value;
   }
 
-  /// Steady rolling on `normal` (a solution on `grid`), as the fields a tool appends to
-  /// its line: ` fx=<N> fs=<N> mn=<N m> nadh=<n> nslip=<n> sweeps=<k> tangential=<status>`.
+  /// Steady rolling on `normal` (a solution on `grid`) by the chosen method, as the fields
+  /// a tool appends to its line:
+  /// ` fx=<N> fs=<N> mn=<N m> nadh=<n> nslip=<n> sweeps=<k> tangential=<status>` (FASTSIM: 1 sweep).
   std::string solve_fields(const fastnorm::Grid<double>& grid, const fastnorm::Material<double>& material,
                            const fastnorm::Solution<double>& normal) const {
-    const auto answer = fastnorm::SteadyRollingSolver<double>(grid, material).solve(normal, friction, creepage());
+    const auto answer = method == "fast"
+                            ? fastnorm::solve_fastsim(grid, material, normal, friction, creepage())
+                            : fastnorm::SteadyRollingSolver<double>(grid, material).solve(normal, friction, creepage());
     char text[256];
     std::snprintf(text, sizeof text, " fx=%.6g fs=%.6g mn=%.6g nadh=%ld nslip=%ld sweeps=%d tangential=%s",
                   answer.force_x, answer.force_y, answer.spin_moment, static_cast<long>(answer.adhesion_elements),
