@@ -49,3 +49,28 @@ def test_a_map_of_the_wrong_shape_is_refused():
     grid = fastnorm.Grid(4, 3, 1e-3, 1e-3)
     with pytest.raises(ValueError, match="pressure_pa must have shape"):
         fastnorm.plot.pressure_map(grid, np.zeros((4, 3)))
+
+
+def test_traction_map_of_a_rolling_wheelset_patch(output_dir):
+    model = fastnorm.WheelsetContact(solver="elliptic", elements=30, friction=0.3)
+    velocity = fastnorm.Velocity(forward_m_per_s=30.0, pitch_rate_rad_per_s=-30.0 / 0.45, lateral_m_per_s=0.05)
+    patch = model.evaluate(lateral_shift_m=2e-3, vertical_m=0.1e-3, velocity=velocity).wheels[1].patches[0]
+    traction = patch.traction
+    path = output_dir / "traction_right.png"
+    if path.exists():
+        path.unlink()
+    ax = fastnorm.plot.traction_map(patch.grid, traction, title="right wheel", every=2, path=str(path))
+    assert path.stat().st_size > 5_000
+    assert ax.get_aspect() == 1.0
+    # The areas as the image (exterior masked), an arrow per picked element in contact.
+    image = ax.get_images()[0]
+    assert np.array_equal(image.get_array().filled(0), traction.state.astype(float))
+    arrows = ax.collections[0]
+    picked = np.zeros(traction.state.shape, dtype=bool)
+    picked[::2, ::2] = True
+    picked &= traction.state > 0
+    assert len(arrows.U) == picked.sum() > 0
+    assert np.allclose(arrows.U, traction.traction_x_pa[picked] / 1e6)
+    assert np.allclose(arrows.V, traction.traction_y_pa[picked] / 1e6)
+    with pytest.raises(ValueError, match="every"):
+        fastnorm.plot.traction_map(patch.grid, traction, every=0)

@@ -3,7 +3,9 @@
 pressure_map draws pressures with the true aspect ratio dx : dy, axes in mm along the
 rolling direction x and the lateral y, and a colour bar in MPa. compare sets a reduced
 solver's answer beside NORM's: both maps with NORM's contact outline over the reduced one,
-the centre-strip pressure profiles, and the difference. Figures are made without pyplot
+the centre-strip pressure profiles, and the difference. traction_map draws a tangential
+answer: the adhesion and slip areas and the traction vectors on the rail. Figures are made
+without pyplot
 (matplotlib.figure.Figure), so they work headless and in threads; save them with
 figure.savefig(path) or give path=.
 """
@@ -12,7 +14,7 @@ import numpy as np
 from matplotlib.figure import Figure
 from matplotlib.lines import Line2D
 
-__all__ = ["centre_strip", "compare", "contact_outline", "extent_mm", "pressure_map"]
+__all__ = ["centre_strip", "compare", "contact_outline", "extent_mm", "pressure_map", "traction_map"]
 
 
 def extent_mm(grid):
@@ -120,3 +122,44 @@ def compare(grid, reference, reduced, reference_name="NORM", reduced_name="reduc
     if path is not None:
         figure.savefig(path)
     return figure
+
+
+def traction_map(grid, tangential, ax=None, title=None, every=1, path=None):
+    """Draws a tangential answer on its grid; returns the Axes.
+
+    tangential: a TangentialSolution (solve_steady_rolling's, or a wheelset Patch.traction).
+    The adhesion area light, the slip area dark (its state, 1 adhesion and 2 slip, as the
+    image), and an arrow for the traction on the rail at every `every`-th element of each
+    row and column in contact, in MPa with one scale for all (its key in the corner).
+    Without ax a new Figure is made; saved to path if given.
+    """
+    state = _checked(grid, tangential.state, "tangential.state").astype(float)
+    traction_x = _checked(grid, tangential.traction_x_pa, "tangential.traction_x_pa") / 1e6
+    traction_y = _checked(grid, tangential.traction_y_pa, "tangential.traction_y_pa") / 1e6
+    if int(every) < 1:
+        raise ValueError(f"every must be a positive whole number, not {every}")
+    every = int(every)
+    ax = _axes(ax)
+    shown = np.ma.masked_equal(state, 0.0)  # exterior left blank
+    ax.imshow(shown, origin="lower", extent=extent_mm(grid), aspect="equal", cmap="Paired", vmin=0.5, vmax=2.5,
+              interpolation="nearest")
+    x, y = _centres_mm(grid)
+    xx, yy = np.meshgrid(x, y)
+    picked = np.zeros_like(state, dtype=bool)
+    picked[::every, ::every] = True
+    picked &= state > 0
+    arrows = ax.quiver(xx[picked], yy[picked], traction_x[picked], traction_y[picked], angles="xy", color="black",
+                       width=0.003)
+    peak = float(np.hypot(traction_x, traction_y).max())
+    if peak > 0:
+        ax.quiverkey(arrows, 0.85, 1.02, peak, f"{peak:.3g} MPa", labelpos="E")
+    ax.set_xlabel("x, rolling direction (mm)")
+    ax.set_ylabel("y, lateral (mm)")
+    adhesion = Line2D([], [], color=ax.images[-1].cmap(ax.images[-1].norm(1.0)), linewidth=6, label="adhesion")
+    slip = Line2D([], [], color=ax.images[-1].cmap(ax.images[-1].norm(2.0)), linewidth=6, label="slip")
+    ax.legend(handles=[adhesion, slip], loc="lower right", fontsize="small")
+    if title:
+        ax.set_title(title)
+    if path is not None:
+        ax.figure.savefig(path)
+    return ax
