@@ -100,13 +100,20 @@ TangentialSolution<Scalar> solve_fastsim(const Grid<Scalar>& grid, const Solutio
   return answer;
 }
 
+/// The sensitivities of FASTSIM's creep forces to the creepages: rows Fx, Fy (N) and the
+/// spin moment Mz (N·m), columns ξ, η (dimensionless) and φ (rad/m), at fixed pressure and
+/// spin centre (docs/tangential.md Eq. (T12)).
+template <typename Scalar>
+using CreepJacobian = Eigen::Matrix<Scalar, 3, 3>;
+
 /// The same into `answer`, whose storage it reuses: no allocation once `answer` has held a
-/// solution of the grid's size (the time loop's form).
+/// solution of the grid's size (the time loop's form); with `jacobian`, the sensitivities
+/// of the forces to the creepages as well, differentiated through the sweep (T12).
 /// @throws fastnorm::invalid_argument as the other overloads
 template <typename Scalar>
 void solve_fastsim(const Grid<Scalar>& grid, const Solution<Scalar>& normal, Scalar friction,
                    const Creepage<Scalar>& creepage, const Flexibility<Scalar>& flexibility, RollingDirection direction,
-                   TangentialSolution<Scalar>& answer) {
+                   TangentialSolution<Scalar>& answer, CreepJacobian<Scalar>* jacobian = nullptr) {
   detail::check_tangential_input(grid, normal, friction, creepage, "solve_fastsim");
   check_positive(flexibility.longitudinal, "solve_fastsim: flexibility.longitudinal (m/Pa)");
   check_positive(flexibility.lateral, "solve_fastsim: flexibility.lateral (m/Pa)");
@@ -118,15 +125,19 @@ void solve_fastsim(const Grid<Scalar>& grid, const Solution<Scalar>& normal, Sca
   // The traction rates along x, −dp/dx in the rolling direction's sense: (T11) without dx.
   const Scalar rate_x0 = creepage.longitudinal / flexibility.longitudinal, rate_y0 = creepage.lateral / flexibility.lateral;
   const Scalar spin_rate = creepage.spin / flexibility.spin;
+  using Derivative = Eigen::Matrix<Scalar, 2, 3>;  // d(p_x, p_y)/d(ξ, η, φ)
+  if (jacobian) jacobian->setZero();
   bool loaded = false;
   for (Eigen::Index j = 0; j < my; ++j) {
     const Scalar rate_x = rate_x0 - spin_rate * (grid.y(j) - creepage.spin_centre_y);
     Scalar px = 0, py = 0;  // the upstream neighbour's traction
+    Derivative dp = Derivative::Zero();  // and its derivative
     for (Eigen::Index step = 0; step < mx; ++step) {
       const Eigen::Index i = positive ? mx - 1 - step : step;
       const Eigen::Index k = grid.index(i, j);
       if (!detail::carries_pressure(normal, k)) {
         px = py = 0;
+        dp.setZero();
         continue;
       }
       loaded = true;
@@ -134,7 +145,26 @@ void solve_fastsim(const Grid<Scalar>& grid, const Solution<Scalar>& normal, Sca
       const Scalar trial_x = px - dx * rate_x, trial_y = py - dx * rate_y;
       // Compared squared, √ only where it slips (std::hypot's overflow guard is not needed).
       const Scalar bound = friction * normal.pressure(k), size_squared = trial_x * trial_x + trial_y * trial_y;
-      if (size_squared <= bound * bound) {
+      const bool adheres = size_squared <= bound * bound;
+      if (jacobian) {  // (T12): d(trial) = dp⁺ − dx·d(rate); in slip, projected across the trial
+        Derivative d_trial = dp;
+        d_trial(0, 0) -= dx / flexibility.longitudinal;
+        d_trial(0, 2) += dx * (grid.y(j) - creepage.spin_centre_y) / flexibility.spin;
+        d_trial(1, 1) -= dx / flexibility.lateral;
+        d_trial(1, 2) -= dx * (grid.x(i) + shift - creepage.spin_centre_x) / flexibility.spin;
+        if (adheres) {
+          dp = d_trial;
+        } else {
+          const Scalar size = std::sqrt(size_squared);
+          const Eigen::Matrix<Scalar, 2, 1> direction_of_trial(trial_x / size, trial_y / size);
+          dp = (bound / size) *
+               (Eigen::Matrix<Scalar, 2, 2>::Identity() - direction_of_trial * direction_of_trial.transpose()) * d_trial;
+        }
+        jacobian->row(0) += area * dp.row(0);
+        jacobian->row(1) += area * dp.row(1);
+        jacobian->row(2) += area * (grid.x(i) * dp.row(1) - grid.y(j) * dp.row(0));
+      }
+      if (adheres) {
         px = trial_x, py = trial_y;
         answer.state(k) = TractionState::adhesion;
       } else {

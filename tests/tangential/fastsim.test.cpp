@@ -3,6 +3,7 @@
 // the linear theory, FASTSIM against CONTACT's FASTSIM results, and FASTSIM's symmetries.
 #include <catch2/catch.hpp>
 
+#include <array>
 #include <cmath>
 #include <fastnorm/fastsim.hpp>
 #include <fastnorm/hertz.hpp>
@@ -322,4 +323,47 @@ TEST_CASE("FASTSIM refuses bad input by name", "[tangential]") {
   CHECK(fastnorm::solve_fastsim(problem.grid, problem.material, empty, 0.3, creepage(1e-3, 0, 0)).status ==
         fastnorm::Status::no_contact);
   CHECK_THROWS_WITH(fastnorm::equivalent_ellipse(problem.grid, empty), Contains("no element"));
+}
+
+TEST_CASE("FASTSIM's sensitivities to the creepages are its forces' derivatives", "[tangential]") {
+  // Against central differences of the forces, in full adhesion (where they are the linear
+  // theory's constant gradient), partial slip and near full slip, both rolling directions,
+  // with a spin centre off the origin.
+  const LinearCase hertz_case = linear_case(0.46, 0.3, 40, false);
+  const auto& problem = hertz_case.problem;
+  const auto flexibility = fastnorm::kalker_flexibility(hertz_case.ellipse, problem.material);
+  const double mu = 0.3, c = std::sqrt(hertz_case.ellipse.a * hertz_case.ellipse.b);
+  for (const auto direction : {fastnorm::RollingDirection::positive_x, fastnorm::RollingDirection::negative_x}) {
+    for (const double scale : {1e-3, 0.5, 1.0, 4.0}) {
+      auto base = creepage(4e-4 * scale, -3e-4 * scale, 0.4 * scale);
+      base.spin_centre_x = 1e-3;
+      base.spin_centre_y = -0.5e-3;
+      fastnorm::TangentialSolution<> answer;
+      fastnorm::CreepJacobian<double> jacobian;
+      fastnorm::solve_fastsim(problem.grid, problem.normal, mu, base, flexibility, direction, answer, &jacobian);
+      REQUIRE(answer.ok());
+      const std::array<double, 3> steps{1e-9, 1e-9, 1e-9 / c};
+      for (int column = 0; column < 3; ++column) {
+        auto forces = [&](double sign) {
+          auto moved = base;
+          (column == 0 ? moved.longitudinal : column == 1 ? moved.lateral : moved.spin) += sign * steps[column];
+          const auto at = fastnorm::solve_fastsim(problem.grid, problem.normal, mu, moved, flexibility, direction);
+          return Eigen::Vector3d(at.force_x, at.force_y, at.spin_moment);
+        };
+        const Eigen::Vector3d difference = (forces(1) - forces(-1)) / (2 * steps[column]);
+        const Eigen::Vector3d weights(1, 1, 1 / c);  // moments in force units
+        INFO("scale " << scale << ", column " << column << ": analytic " << jacobian.col(column).transpose()
+                      << ", differences " << difference.transpose() << ", slip " << answer.slip_elements);
+        CHECK((jacobian.col(column) - difference).cwiseProduct(weights).norm() <=
+              1e-5 * jacobian.col(column).cwiseProduct(weights).norm());
+      }
+      if (scale == 1e-3) {  // in full adhesion the forces are linear: F = J w
+        const Eigen::Vector3d creepages(base.longitudinal, base.lateral, base.spin);
+        CHECK(answer.slip_elements == 0);
+        CHECK(jacobian.row(0).dot(creepages) == Approx(answer.force_x).epsilon(1e-9));
+        CHECK(jacobian.row(1).dot(creepages) == Approx(answer.force_y).epsilon(1e-9));
+        CHECK(jacobian.row(2).dot(creepages) == Approx(answer.spin_moment).epsilon(1e-9));
+      }
+    }
+  }
 }

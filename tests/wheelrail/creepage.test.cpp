@@ -135,6 +135,7 @@ TEST_CASE("The model's creep forces are FASTSIM's on its patches and enter its s
     }
   }
   CHECK((result.force - force).norm() <= 1e-9 * force.norm());
+  CHECK(result.wheels[0].patches[0].creep_jacobian.hasNaN());  // sensitivities not asked for
   // Without velocities again: normal only, the creep cleared.
   const auto& again = model.evaluate(pose);
   CHECK((again.force - normal_only.force).norm() <= 1e-9 * normal_only.force.norm());
@@ -187,4 +188,35 @@ TEST_CASE("Creep forces refuse bad velocities and options by name", "[wheelrail]
   velocity.forward = 30;
   velocity.yaw_rate = std::nan("");
   CHECK_THROWS_WITH(model.evaluate(pose, velocity), Contains("velocity must be finite"));
+}
+
+TEST_CASE("The model gives each patch FASTSIM's sensitivities when asked", "[wheelrail][creep]") {
+  const wr::Track track;
+  const wr::Wheelset wheelset;
+  wr::WheelsetContactOptions options;
+  options.solver = fastnorm::SolverSpec<double>::parse("elliptic");
+  options.grid.elements = 30;
+  options.creep.friction = 0.3;
+  options.creep.sensitivities = true;
+  wr::WheelsetContact<> model(track, wheelset, options);
+  auto pose = wr::rigid_contact_pose(track, wheelset, 2e-3, 3e-3, options.search);
+  pose.z += 0.1e-3;
+  wr::WheelsetVelocity velocity;
+  velocity.forward = 30;
+  velocity.pitch_rate = -30 / 0.45;
+  const auto& result = model.evaluate(pose, velocity);
+  for (const auto& wheel : result.wheels) {
+    for (const auto& patch : wheel.patches) {
+      const auto kinematics = wr::patch_kinematics(wheelset, pose, velocity, patch.patch.frame);
+      fastnorm::TangentialSolution<double> answer;
+      fastnorm::CreepJacobian<double> expected;
+      fastnorm::solve_fastsim(patch.patch.grid, patch.solution, 0.3, kinematics.creepage,
+                              fastnorm::kalker_flexibility(fastnorm::equivalent_ellipse(patch.patch.grid, patch.solution),
+                                                           options.material),
+                              kinematics.direction, answer, &expected);
+      CHECK(patch.creep_jacobian == expected);
+      CHECK(patch.creep_jacobian(0, 0) < 0);  // more ξ, more negative Fx on the rail
+      CHECK(patch.creep_jacobian(1, 1) < 0);
+    }
+  }
 }

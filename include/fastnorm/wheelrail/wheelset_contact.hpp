@@ -344,7 +344,7 @@ class WheelsetContact {
     out.creepage = kinematics.creepage;
     const auto flexibility = kalker_flexibility(equivalent_ellipse(patch.grid, normal), options_.material);
     solve_fastsim(patch.grid, normal, *options_.creep.friction, kinematics.creepage, flexibility, kinematics.direction,
-                  out.traction);
+                  out.traction, options_.creep.sensitivities ? &out.creep_jacobian : nullptr);
     const auto& traction = out.traction;
     out.creep_force = -(traction.force_x * Eigen::Vector3d::UnitX() + traction.force_y * patch.frame.lateral_axis());
     out.force += out.creep_force;
@@ -358,6 +358,7 @@ class WheelsetContact {
     out.creepage = {};
     fastnorm::detail::reset_answer(out.traction, elements);
     out.creep_force.setZero();
+    out.creep_jacobian.setConstant(std::nan(""));
   }
 
   /// For each new region, the previous patches whose reference point lies within the

@@ -20,6 +20,10 @@ namespace fastnorm::wheelrail {
 struct CreepOptions {
   /// Coulomb's coefficient μ of every patch; unset, evaluate with velocities is refused.
   std::optional<double> friction;
+  /// Also each patch's d(Fx, Fs, Mn)/d(ξ, η, φ) (PatchContact::creep_jacobian), for an
+  /// implicit integrator's Jacobian: FASTSIM then takes about 2.3 times as long (35 against
+  /// 15 µs on a 72 × 56 patch with 868 elements in contact).
+  bool sensitivities = false;
 
   /// @throws fastnorm::invalid_argument naming the offending field
   void validate() const {

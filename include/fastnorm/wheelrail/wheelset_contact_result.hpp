@@ -62,6 +62,10 @@ struct PatchContact {
   TangentialSolution<double> traction;
   /// The creep force on the wheel, −(Fx·e_x + Fs·t_s) (N, track frame).
   Eigen::Vector3d creep_force = Eigen::Vector3d::Zero();
+  /// With velocities and options.creep.sensitivities: d(Fx, Fs, Mn)/d(ξ, η, φ) of `traction`
+  /// (rows N, N, N·m; columns per unit creepage, φ in rad/m; fastsim.hpp, CreepJacobian);
+  /// NaN otherwise.
+  Eigen::Matrix3d creep_jacobian = Eigen::Matrix3d::Constant(std::nan(""));
   double contact_angle = 0;     ///< of the normal from the vertical, + leaning to the track centre (rad)
   double approach = 0;          ///< the rigid interpenetration −min h (m)
   Eigen::Index contact_elements = 0;
