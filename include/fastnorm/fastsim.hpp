@@ -76,6 +76,12 @@ Ellipse<Scalar> equivalent_ellipse(const Grid<Scalar>& grid, const Solution<Scal
   return {std::sqrt(area * ratio / pi<Scalar>), std::sqrt(area / (pi<Scalar> * ratio))};
 }
 
+/// The sensitivities of FASTSIM's creep forces to the creepages: rows Fx, Fy (N) and the
+/// spin moment Mz (N·m), columns ξ, η (dimensionless) and φ (rad/m), at fixed pressure and
+/// spin centre (docs/tangential.md Eq. (T12)).
+template <typename Scalar>
+using CreepJacobian = Eigen::Matrix<Scalar, 3, 3>;
+
 /// Steady rolling by Kalker's simplified theory (FASTSIM) on the normal solution `normal` of
 /// `grid`, with Coulomb friction `friction` and the creepages `creepage`
 /// (docs/tangential.md §9). Along each row from the leading edge, every element carrying
@@ -99,12 +105,6 @@ TangentialSolution<Scalar> solve_fastsim(const Grid<Scalar>& grid, const Solutio
   solve_fastsim(grid, normal, friction, creepage, flexibility, direction, answer);
   return answer;
 }
-
-/// The sensitivities of FASTSIM's creep forces to the creepages: rows Fx, Fy (N) and the
-/// spin moment Mz (N·m), columns ξ, η (dimensionless) and φ (rad/m), at fixed pressure and
-/// spin centre (docs/tangential.md Eq. (T12)).
-template <typename Scalar>
-using CreepJacobian = Eigen::Matrix<Scalar, 3, 3>;
 
 /// The same into `answer`, whose storage it reuses: no allocation once `answer` has held a
 /// solution of the grid's size (the time loop's form); with `jacobian`, the sensitivities
@@ -146,6 +146,7 @@ void solve_fastsim(const Grid<Scalar>& grid, const Solution<Scalar>& normal, Sca
       // Compared squared, √ only where it slips (std::hypot's overflow guard is not needed).
       const Scalar bound = friction * normal.pressure(k), size_squared = trial_x * trial_x + trial_y * trial_y;
       const bool adheres = size_squared <= bound * bound;
+      const Scalar size = adheres ? Scalar(0) : std::sqrt(size_squared);
       if (jacobian) {  // (T12): d(trial) = dp⁺ − dx·d(rate); in slip, projected across the trial
         Derivative d_trial = dp;
         d_trial(0, 0) -= dx / flexibility.longitudinal;
@@ -155,7 +156,6 @@ void solve_fastsim(const Grid<Scalar>& grid, const Solution<Scalar>& normal, Sca
         if (adheres) {
           dp = d_trial;
         } else {
-          const Scalar size = std::sqrt(size_squared);
           const Eigen::Matrix<Scalar, 2, 1> direction_of_trial(trial_x / size, trial_y / size);
           dp = (bound / size) *
                (Eigen::Matrix<Scalar, 2, 2>::Identity() - direction_of_trial * direction_of_trial.transpose()) * d_trial;
@@ -168,8 +168,7 @@ void solve_fastsim(const Grid<Scalar>& grid, const Solution<Scalar>& normal, Sca
         px = trial_x, py = trial_y;
         answer.state(k) = TractionState::adhesion;
       } else {
-        const Scalar scale = bound / std::sqrt(size_squared);
-        px = trial_x * scale, py = trial_y * scale;
+        px = trial_x * bound / size, py = trial_y * bound / size;
         answer.state(k) = TractionState::slip;
         answer.slip_x(k) = flexibility.longitudinal * (px - trial_x) / dx;
         answer.slip_y(k) = flexibility.lateral * (py - trial_y) / dx;
