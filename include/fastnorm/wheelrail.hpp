@@ -11,6 +11,7 @@
 #include "fastnorm/wheelrail/wheelset.hpp"
 #include "fastnorm/wheelrail/contact_search.hpp"
 #include "fastnorm/wheelrail/patch.hpp"
+#include "fastnorm/wheelrail/creepage.hpp"
 #include "fastnorm/wheelrail/undeformed_distance.hpp"
 #include "fastnorm/wheelrail/equilibrium.hpp"
 #include "fastnorm/wheelrail/wheelset_contact_options.hpp"

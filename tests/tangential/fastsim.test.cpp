@@ -3,7 +3,6 @@
 // the linear theory, FASTSIM against CONTACT's FASTSIM results, and FASTSIM's symmetries.
 #include <catch2/catch.hpp>
 
-#include <array>
 #include <cmath>
 #include <fastnorm/fastsim.hpp>
 #include <fastnorm/hertz.hpp>
@@ -342,15 +341,15 @@ TEST_CASE("FASTSIM's sensitivities to the creepages are its forces' derivatives"
       fastnorm::CreepJacobian<double> jacobian;
       fastnorm::solve_fastsim(problem.grid, problem.normal, mu, base, flexibility, direction, answer, &jacobian);
       REQUIRE(answer.ok());
-      const std::array<double, 3> steps{1e-9, 1e-9, 1e-9 / c};
+      const Eigen::Vector3d steps(1e-9, 1e-9, 1e-9 / c);
       for (int column = 0; column < 3; ++column) {
         auto forces = [&](double sign) {
           auto moved = base;
-          (column == 0 ? moved.longitudinal : column == 1 ? moved.lateral : moved.spin) += sign * steps[column];
+          (column == 0 ? moved.longitudinal : column == 1 ? moved.lateral : moved.spin) += sign * steps(column);
           const auto at = fastnorm::solve_fastsim(problem.grid, problem.normal, mu, moved, flexibility, direction);
           return Eigen::Vector3d(at.force_x, at.force_y, at.spin_moment);
         };
-        const Eigen::Vector3d difference = (forces(1) - forces(-1)) / (2 * steps[column]);
+        const Eigen::Vector3d difference = (forces(1) - forces(-1)) / (2 * steps(column));
         const Eigen::Vector3d weights(1, 1, 1 / c);  // moments in force units
         INFO("scale " << scale << ", column " << column << ": analytic " << jacobian.col(column).transpose()
                       << ", differences " << difference.transpose() << ", slip " << answer.slip_elements);
