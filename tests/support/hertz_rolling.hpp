@@ -75,4 +75,27 @@ inline double number(const std::map<std::string, std::string>& row, const std::s
   return std::stod(row.at(column));
 }
 
+/// The two symmetries every steady-rolling solver keeps, as sections of the calling test:
+/// the left/right mirror, (ξ, −η, −φ) gives (Fx, −Fy, −Mz) and the same areas, and the
+/// reversed rolling direction, (−ξ, η, −φ) towards −x gives (−Fx, Fy, −Mz). `solve(creepage,
+/// direction)` is the solver; `base` its answer at (4e-4, −3e-4, 0.4 rad/m) towards +x;
+/// forces within `margin`, moments within `margin`·c.
+template <typename Solve>
+void check_mirror_and_reversal(const Solve& solve, const fastnorm::TangentialSolution<>& base, double margin, double c) {
+  SECTION("left/right mirror: (xi, -eta, -phi) gives (Fx, -Fy, -Mz)") {
+    const auto mirrored = solve(creepage(4e-4, 3e-4, -0.4), fastnorm::RollingDirection::positive_x);
+    CHECK(mirrored.force_x == Approx(base.force_x).margin(margin));
+    CHECK(mirrored.force_y == Approx(-base.force_y).margin(margin));
+    CHECK(mirrored.spin_moment == Approx(-base.spin_moment).margin(margin * c));
+    CHECK(mirrored.adhesion_elements == base.adhesion_elements);
+  }
+  SECTION("reversed rolling direction: (-xi, eta, -phi) rolling towards -x gives (-Fx, Fy, -Mz)") {
+    const auto reversed = solve(creepage(-4e-4, -3e-4, -0.4), fastnorm::RollingDirection::negative_x);
+    CHECK(reversed.force_x == Approx(-base.force_x).margin(margin));
+    CHECK(reversed.force_y == Approx(base.force_y).margin(margin));
+    CHECK(reversed.spin_moment == Approx(-base.spin_moment).margin(margin * c));
+    CHECK(reversed.adhesion_elements == base.adhesion_elements);
+  }
+}
+
 }  // namespace fastnorm::test

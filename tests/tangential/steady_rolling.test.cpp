@@ -153,25 +153,12 @@ TEST_CASE("Steady rolling keeps the problem's symmetries", "[tangential]") {
     REQUIRE(answer.ok());
     return answer;
   };
-  const auto positive = fastnorm::RollingDirection::positive_x, negative = fastnorm::RollingDirection::negative_x;
+  const auto positive = fastnorm::RollingDirection::positive_x;
   const auto base = solve(creepage(4e-4, -3e-4, 0.4), positive);
   INFO("base: Fx " << base.force_x << " Fy " << base.force_y << " Mz " << base.spin_moment << " sweeps " << base.sweeps);
   REQUIRE(base.slip_elements > 0);
   REQUIRE(base.adhesion_elements > 0);
-  SECTION("left/right mirror: (xi, -eta, -phi) gives (Fx, -Fy, -Mz)") {
-    const auto mirrored = solve(creepage(4e-4, 3e-4, -0.4), positive);
-    CHECK(mirrored.force_x == Approx(base.force_x).margin(1e-6 * scale));
-    CHECK(mirrored.force_y == Approx(-base.force_y).margin(1e-6 * scale));
-    CHECK(mirrored.spin_moment == Approx(-base.spin_moment).margin(1e-6 * scale * c));
-    CHECK(mirrored.adhesion_elements == base.adhesion_elements);
-  }
-  SECTION("reversed rolling direction: (-xi, eta, -phi) rolling towards -x gives (-Fx, Fy, -Mz)") {
-    const auto reversed = solve(creepage(-4e-4, -3e-4, -0.4), negative);
-    CHECK(reversed.force_x == Approx(-base.force_x).margin(1e-6 * scale));
-    CHECK(reversed.force_y == Approx(base.force_y).margin(1e-6 * scale));
-    CHECK(reversed.spin_moment == Approx(-base.spin_moment).margin(1e-6 * scale * c));
-    CHECK(reversed.adhesion_elements == base.adhesion_elements);
-  }
+  fastnorm::test::check_mirror_and_reversal(solve, base, 1e-6 * scale, c);
   SECTION("moving the spin centre with xi and eta transformed changes nothing") {
     // w = (xi - phi (y - y0), eta + phi (x - x0)): y0 += dy needs xi -= phi dy, x0 += dx needs eta += phi dx.
     auto moved = creepage(4e-4 - 0.4 * 2e-3, -3e-4 + 0.4 * -1e-3, 0.4);

@@ -23,6 +23,31 @@ wr::PatchFrame frame_at(wr::Side side, double x, double y, double z, double incl
   return frame;
 }
 
+/// The model of the creep tests: the elliptic basis on 30 elements, Coulomb's `friction`.
+wr::WheelsetContactOptions creep_options(double friction) {
+  wr::WheelsetContactOptions options;
+  options.solver = fastnorm::SolverSpec<double>::parse("elliptic");
+  options.grid.elements = 30;
+  options.creep.friction = friction;
+  return options;
+}
+
+/// The rigid two-wheel contact at (y, yaw), lowered by 0.1 mm.
+wr::WheelsetPose lowered_pose(const wr::Track& track, const wr::Wheelset& wheelset, double y, double yaw,
+                              const wr::WheelsetContactOptions& options) {
+  auto pose = wr::rigid_contact_pose(track, wheelset, y, yaw, options.search);
+  pose.z += 0.1e-3;
+  return pose;
+}
+
+/// Forwards at 30 m/s, rolling on r0 = 0.45 m.
+wr::WheelsetVelocity rolling_at_30() {
+  wr::WheelsetVelocity velocity;
+  velocity.forward = 30;
+  velocity.pitch_rate = -30 / 0.45;
+  return velocity;
+}
+
 }  // namespace
 
 TEST_CASE("Creepages follow the rigid kinematics of hand calculations", "[wheelrail][creep]") {
@@ -86,16 +111,10 @@ TEST_CASE("Creepages follow the rigid kinematics of hand calculations", "[wheelr
 TEST_CASE("The model's creep forces are FASTSIM's on its patches and enter its sums", "[wheelrail][creep]") {
   const wr::Track track;
   const wr::Wheelset wheelset;
-  wr::WheelsetContactOptions options;
-  options.solver = fastnorm::SolverSpec<double>::parse("elliptic");
-  options.grid.elements = 30;
-  options.creep.friction = 0.3;
+  const auto options = creep_options(0.3);
   wr::WheelsetContact<> model(track, wheelset, options);
-  auto pose = wr::rigid_contact_pose(track, wheelset, 2e-3, 3e-3, options.search);
-  pose.z += 0.1e-3;
-  wr::WheelsetVelocity velocity;
-  velocity.forward = 30;
-  velocity.pitch_rate = -30 / 0.45;
+  const auto pose = lowered_pose(track, wheelset, 2e-3, 3e-3, options);
+  auto velocity = rolling_at_30();
   velocity.yaw_rate = 0.05;
   const auto normal_only = model.evaluate(pose);  // a copy
   const auto& result = model.evaluate(pose, velocity);
@@ -146,13 +165,9 @@ TEST_CASE("The model's creep forces are FASTSIM's on its patches and enter its s
 TEST_CASE("A locked wheelset slides: the creep force is mu Fn against the motion", "[wheelrail][creep]") {
   const wr::Track track;
   const wr::Wheelset wheelset;
-  wr::WheelsetContactOptions options;
-  options.solver = fastnorm::SolverSpec<double>::parse("elliptic");
-  options.grid.elements = 30;
-  options.creep.friction = 0.25;
+  const auto options = creep_options(0.25);
   wr::WheelsetContact<> model(track, wheelset, options);
-  auto pose = wr::rigid_contact_pose(track, wheelset, 0.0, 0.0, options.search);
-  pose.z += 0.1e-3;
+  const auto pose = lowered_pose(track, wheelset, 0.0, 0.0, options);
   wr::WheelsetVelocity velocity;
   velocity.forward = 10;  // no pitch rate: ξ = −1, full sliding
   const auto& result = model.evaluate(pose, velocity);
@@ -171,8 +186,7 @@ TEST_CASE("Creep forces refuse bad velocities and options by name", "[wheelrail]
   const wr::Wheelset wheelset;
   wr::WheelsetContactOptions options;
   options.grid.elements = 20;
-  auto pose = wr::rigid_contact_pose(track, wheelset, 0.0, 0.0, options.search);
-  pose.z += 0.1e-3;
+  const auto pose = lowered_pose(track, wheelset, 0.0, 0.0, options);
   wr::WheelsetVelocity velocity;
   velocity.forward = 30;
   {
@@ -193,17 +207,11 @@ TEST_CASE("Creep forces refuse bad velocities and options by name", "[wheelrail]
 TEST_CASE("The model gives each patch FASTSIM's sensitivities when asked", "[wheelrail][creep]") {
   const wr::Track track;
   const wr::Wheelset wheelset;
-  wr::WheelsetContactOptions options;
-  options.solver = fastnorm::SolverSpec<double>::parse("elliptic");
-  options.grid.elements = 30;
-  options.creep.friction = 0.3;
+  auto options = creep_options(0.3);
   options.creep.sensitivities = true;
   wr::WheelsetContact<> model(track, wheelset, options);
-  auto pose = wr::rigid_contact_pose(track, wheelset, 2e-3, 3e-3, options.search);
-  pose.z += 0.1e-3;
-  wr::WheelsetVelocity velocity;
-  velocity.forward = 30;
-  velocity.pitch_rate = -30 / 0.45;
+  const auto pose = lowered_pose(track, wheelset, 2e-3, 3e-3, options);
+  const auto velocity = rolling_at_30();
   const auto& result = model.evaluate(pose, velocity);
   for (const auto& wheel : result.wheels) {
     for (const auto& patch : wheel.patches) {
