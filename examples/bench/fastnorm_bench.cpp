@@ -12,7 +12,7 @@
 //   fastnorm-bench --growth [--sizes 30,60,120,240,480,960] [--repeats 3]
 //   fastnorm-bench --trajectory [--steps 2000] [--trajectory-solvers norm,cg,elliptic,elliptic+warm,...]: trajectory.hpp
 //   fastnorm-bench --tangential [--repeats 5] [CASE...]: steady rolling on CONTACT's Hertz examples or the cases, tangential.hpp
-//   fastnorm-bench --creep-accuracy CASE...: FASTSIM against the exact path at four adhesion levels, tangential.hpp
+//   fastnorm-bench --creep-accuracy CASE...: FASTSIM and strip theory against the exact path at four adhesion levels, tangential.hpp
 //     growth=hertz_<n>x<n> elements=<N> ncontact=<n> norm_s=<t> cg_s=<t> cg_iterations=<k>
 //          cg_mb=<m> elliptic_s=<t> polynomial4_s=<t> max_rss_mb=<m>
 //
@@ -263,7 +263,7 @@ fastnorm_example::CommandLine command_line(Arguments& a) {
   line.flag("--trajectory", a.trajectory, "time the wheelset contact model along the 1 kHz trajectory instead");
   line.option("--steps", a.steps, "N", "--trajectory: time steps (1 ms each)", at_least(3));
   line.flag("--tangential", a.tangential, "time the steady-rolling solver on CONTACT's Hertz examples (or on the CASEs) instead");
-  line.flag("--creep-accuracy", a.creep_accuracy, "FASTSIM against the exact path on the CASEs at four adhesion levels instead");
+  line.flag("--creep-accuracy", a.creep_accuracy, "FASTSIM and strip theory against the exact path on the CASEs at four adhesion levels instead");
   line.option("--trajectory-solvers", a.trajectory_solvers, "NAME,...", "--trajectory: the solvers, NORM first anyway; NAME+warm, NAME+cold: a reduced solver started warm or cold whatever its default (both: compared step by step)");
   return line;
 }

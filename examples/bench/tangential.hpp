@@ -16,25 +16,28 @@
 //   tangential case=<file name> elements=<N> ncontact=<n> ... (the same fields)
 //
 // and after each, the same problem by FASTSIM (fastsim.hpp: Kalker's flexibilities of the
-// equivalent ellipse, the NORM pressure as its bound), with its differences from the exact
-// path in μFn (forces) and μFn·c (moment, c = √(ab) of the equivalent ellipse):
+// equivalent ellipse, the NORM pressure as its bound) and by strip theory (strip_theory.hpp),
+// with their differences from the exact path in μFn (forces) and μFn·c (moment, c = √(ab) of
+// the equivalent ellipse):
 //
 //   fastsim case=<name> solve_us=<median> speedup=<exact/fastsim> nadh=<n> nslip=<n> fx=<N> fy=<N>
 //     mz=<N m> dfx=<μFn> dfy=<μFn> dmz=<μFn c>
+//   strip_theory case=<name> ... (the same fields)
 //
 // The normal problem is solved once by NORM and the solver's tables built once; the times
-// are medians over --repeats solves (FASTSIM's of 100 solves each), interleaved, one thread.
+// are medians over --repeats solves (the fast paths' of 100 solves each), interleaved, one thread.
 //
-// With --creep-accuracy, FASTSIM's accuracy against the exact path on each case (issue 29,
-// docs/validation.md §7): the creepages (ξ, η, φ) = s·(10⁻³, 5·10⁻⁴, 0.5 rad/m), μ = 0.3,
+// With --creep-accuracy, the fast paths' accuracy against the exact path on each case (issue
+// 29, docs/validation.md §7): the creepages (ξ, η, φ) = s·(10⁻³, 5·10⁻⁴, 0.5 rad/m), μ = 0.3,
 // scaled so that the exact path's adhesion fraction is about 0.2, 0.5, 0.8 and 0.95
 // (bisection on log s over a factor 5 below FASTSIM's scale for the level, 7 exact solves:
-// s within 6 %), FASTSIM at the same creepages; one line per case and level (exact_ms the
-// last bisection solve's), then the largest differences:
+// s within 6 %), FASTSIM and strip theory at the same creepages; per case and level (exact_ms
+// the last bisection solve's), then each method's largest differences:
 //
-//   creep_accuracy case=<name> target_adhesion=<f> scale=<s> adhesion_fast=<f> adhesion_exact=<f>
-//     dfx=<μFn> dfy=<μFn> dmz=<μFn c> exact_ms=<t>
-//   creep_accuracy_summary patches=<n> max_dfx=<μFn> max_dfy=<μFn> max_dmz=<μFn c>
+//   creep_accuracy case=<name> target_adhesion=<f> scale=<s> adhesion_exact=<f> exact_ms=<t>
+//     fastsim adhesion=<f> dfx=<μFn> dfy=<μFn> dmz=<μFn c>
+//     strip_theory adhesion=<f> dfx=<μFn> dfy=<μFn> dmz=<μFn c>
+//   creep_accuracy_summary method=<m> patches=<n> max_dfx=<μFn> max_dfy=<μFn> max_dmz=<μFn c>
 //     forces_within_0.05=<k>/<n> moment_within_0.08=<k>/<n>
 #pragma once
 
@@ -62,8 +65,9 @@ inline void time_steady_rolling(const std::string& name, const fastnorm::Grid<>&
   const auto ellipse = fastnorm::equivalent_ellipse(grid, normal);
   const auto flexibility = fastnorm::kalker_flexibility(ellipse, material);
   const int batch = 100;
-  std::vector<double> times, fast_times;
-  fastnorm::TangentialSolution<> answer, fast;
+  fastnorm::StripTheory<> strips(material);
+  std::vector<double> times, fast_times, strip_times;
+  fastnorm::TangentialSolution<> answer, fast, strip;
   for (int r = 0; r < repeats; ++r) {
     auto start = std::chrono::steady_clock::now();
     answer = rolling.solve(normal, friction, creepage);
@@ -71,10 +75,14 @@ inline void time_steady_rolling(const std::string& name, const fastnorm::Grid<>&
     start = std::chrono::steady_clock::now();
     for (int b = 0; b < batch; ++b) fast = fastnorm::solve_fastsim(grid, normal, friction, creepage, flexibility);
     fast_times.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() / batch);
+    start = std::chrono::steady_clock::now();
+    for (int b = 0; b < batch; ++b) strips.solve(grid, normal, friction, creepage, fastnorm::RollingDirection::positive_x, strip);
+    strip_times.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() / batch);
   }
   std::sort(times.begin(), times.end());
   std::sort(fast_times.begin(), fast_times.end());
-  const double exact_time = times[times.size() / 2], fast_time = fast_times[fast_times.size() / 2];
+  std::sort(strip_times.begin(), strip_times.end());
+  const double exact_time = times[times.size() / 2];
   std::printf("tangential case=%s elements=%ld ncontact=%ld xi=%g eta=%g phi=%g solve_ms=%.2f sweeps=%d nadh=%ld "
               "nslip=%ld fx=%.1f fy=%.1f mz=%.4f\n",
               name.c_str(), static_cast<long>(grid.size()), static_cast<long>(normal.in_contact.count()),
@@ -83,12 +91,16 @@ inline void time_steady_rolling(const std::string& name, const fastnorm::Grid<>&
               answer.force_y, answer.spin_moment);
   // Differences from the exact path in μFn and μFn·c, c = √(ab) of the equivalent ellipse.
   const double scale = friction * normal.normal_force, c = std::sqrt(ellipse.a * ellipse.b);
-  std::printf("fastsim case=%s solve_us=%.1f speedup=%.0f nadh=%ld nslip=%ld fx=%.1f fy=%.1f mz=%.4f dfx=%.4f dfy=%.4f "
-              "dmz=%.4f\n",
-              name.c_str(), fast_time * 1e6, exact_time / fast_time, static_cast<long>(fast.adhesion_elements),
-              static_cast<long>(fast.slip_elements), fast.force_x, fast.force_y, fast.spin_moment,
-              (fast.force_x - answer.force_x) / scale, (fast.force_y - answer.force_y) / scale,
-              (fast.spin_moment - answer.spin_moment) / (scale * c));
+  for (int method = 0; method < 2; ++method) {
+    const auto& result = method == 0 ? fast : strip;
+    const double time = method == 0 ? fast_times[fast_times.size() / 2] : strip_times[strip_times.size() / 2];
+    std::printf("%s case=%s solve_us=%.1f speedup=%.0f nadh=%ld nslip=%ld fx=%.1f fy=%.1f mz=%.4f dfx=%.4f dfy=%.4f "
+                "dmz=%.4f\n",
+                method == 0 ? "fastsim" : "strip_theory", name.c_str(), time * 1e6, exact_time / time,
+                static_cast<long>(result.adhesion_elements), static_cast<long>(result.slip_elements), result.force_x,
+                result.force_y, result.spin_moment, (result.force_x - answer.force_x) / scale,
+                (result.force_y - answer.force_y) / scale, (result.spin_moment - answer.spin_moment) / (scale * c));
+  }
 }
 
 inline void bench_tangential_cases(const std::vector<std::string>& paths, int repeats) {
@@ -143,14 +155,32 @@ inline void bench_tangential(int repeats) {
 inline void bench_creep_accuracy(const std::vector<std::string>& paths) {
   const double friction = 0.3;
   const std::vector<double> levels{0.2, 0.5, 0.8, 0.95};
-  double largest_force_x = 0, largest_force_y = 0, largest_moment = 0;
-  int count = 0, forces_within = 0, moment_within = 0;
+  struct Summary {
+    double largest_force_x = 0, largest_force_y = 0, largest_moment = 0;
+    int count = 0, forces_within = 0, moment_within = 0;
+    void add(double dfx, double dfy, double dmz) {
+      largest_force_x = std::max(largest_force_x, std::abs(dfx));
+      largest_force_y = std::max(largest_force_y, std::abs(dfy));
+      largest_moment = std::max(largest_moment, std::abs(dmz));
+      ++count;
+      forces_within += std::abs(dfx) <= 0.05 && std::abs(dfy) <= 0.05 ? 1 : 0;
+      moment_within += std::abs(dmz) <= 0.08 ? 1 : 0;
+    }
+    void print(const char* method) const {
+      std::printf("creep_accuracy_summary method=%s patches=%d max_dfx=%.4f max_dfy=%.4f max_dmz=%.4f "
+                  "forces_within_0.05=%d/%d moment_within_0.08=%d/%d\n",
+                  method, count, largest_force_x, largest_force_y, largest_moment, forces_within, count, moment_within,
+                  count);
+    }
+  };
+  Summary summaries[2];
   for (const auto& path : paths) {
     const auto stored = fastnorm::read_case_file(path);
     const auto normal = fastnorm::NormSolver<>(stored.grid, stored.material).solve(stored.undeformed_distance, stored.loading);
     const fastnorm::SteadyRollingSolver<> rolling(stored.grid, stored.material);
     const auto ellipse = fastnorm::equivalent_ellipse(stored.grid, normal);
     const auto flexibility = fastnorm::kalker_flexibility(ellipse, stored.material);
+    fastnorm::StripTheory<> strips(stored.material);
     const auto scaled = [](double scale) {
       fastnorm::Creepage<> creepage;
       creepage.longitudinal = 1e-3 * scale;
@@ -185,24 +215,23 @@ inline void bench_creep_accuracy(const std::vector<std::string>& paths) {
       const double scale = std::exp((low + high) / 2);
       exact = rolling.solve(normal, friction, scaled(scale));
       const auto fast = fastnorm::solve_fastsim(stored.grid, normal, friction, scaled(scale), flexibility);
-      const double dfx = (fast.force_x - exact.force_x) / scale_force, dfy = (fast.force_y - exact.force_y) / scale_force;
-      const double dmz = (fast.spin_moment - exact.spin_moment) / (scale_force * c);
-      std::printf("creep_accuracy case=%s target_adhesion=%.2f scale=%.4g adhesion_fast=%.3f adhesion_exact=%.3f "
-                  "dfx=%.4f dfy=%.4f dmz=%.4f exact_ms=%.1f%s\n",
-                  stored.name.c_str(), level, scale, adhesion(fast), adhesion(exact), dfx, dfy, dmz, exact_seconds * 1e3,
+      const auto strip = strips.solve(stored.grid, normal, friction, scaled(scale));
+      std::printf("creep_accuracy case=%s target_adhesion=%.2f scale=%.4g adhesion_exact=%.3f exact_ms=%.1f%s\n",
+                  stored.name.c_str(), level, scale, adhesion(exact), exact_seconds * 1e3,
                   exact.ok() ? "" : " exact_not_converged");
+      for (int method = 0; method < 2; ++method) {
+        const auto& answer = method == 0 ? fast : strip;
+        const double dfx = (answer.force_x - exact.force_x) / scale_force;
+        const double dfy = (answer.force_y - exact.force_y) / scale_force;
+        const double dmz = (answer.spin_moment - exact.spin_moment) / (scale_force * c);
+        std::printf("  %s adhesion=%.3f dfx=%.4f dfy=%.4f dmz=%.4f\n", method == 0 ? "fastsim" : "strip_theory",
+                    adhesion(answer), dfx, dfy, dmz);
+        summaries[method].add(dfx, dfy, dmz);
+      }
       std::fflush(stdout);
-      largest_force_x = std::max(largest_force_x, std::abs(dfx));
-      largest_force_y = std::max(largest_force_y, std::abs(dfy));
-      largest_moment = std::max(largest_moment, std::abs(dmz));
-      ++count;
-      forces_within += std::abs(dfx) <= 0.05 && std::abs(dfy) <= 0.05 ? 1 : 0;
-      moment_within += std::abs(dmz) <= 0.08 ? 1 : 0;
     }
   }
-  std::printf("creep_accuracy_summary patches=%d max_dfx=%.4f max_dfy=%.4f max_dmz=%.4f forces_within_0.05=%d/%d "
-              "moment_within_0.08=%d/%d\n",
-              count, largest_force_x, largest_force_y, largest_moment, forces_within, count, moment_within, count);
+  for (int method = 0; method < 2; ++method) summaries[method].print(method == 0 ? "fastsim" : "strip_theory");
 }
 
 }  // namespace fastnorm_bench

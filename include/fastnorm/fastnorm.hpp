@@ -11,6 +11,7 @@
 #include "fastnorm/solvers.hpp"
 #include "fastnorm/tangential_influence.hpp"
 #include "fastnorm/fastsim.hpp"
+#include "fastnorm/strip_theory.hpp"
 #include "fastnorm/kalker_coefficients.hpp"
 #include "fastnorm/tangential_solver.hpp"
 #include "fastnorm/io.hpp"

@@ -53,6 +53,17 @@ Flexibility<Scalar> kalker_flexibility(const Ellipse<Scalar>& ellipse, const Mat
           pi<Scalar> * ellipse.a * ellipse.a / (4 * shear_modulus * c * coefficients.c23)};
 }
 
+namespace detail {
+
+/// The ellipse of area `area` whose ratio a/b is `length` (along x) over `width`.
+template <typename Scalar>
+Ellipse<Scalar> ellipse_of_extent(Scalar area, Scalar length, Scalar width) {
+  const Scalar ratio = length / width;
+  return {std::sqrt(area * ratio / pi<Scalar>), std::sqrt(area / (pi<Scalar> * ratio))};
+}
+
+}  // namespace detail
+
 /// The ellipse equivalent to the contact area of `normal` on `grid`: the same area, and the
 /// ratio a/b of the area's length along x to its width (the extents of its elements).
 /// @throws fastnorm::invalid_argument for a normal solution of another grid or without an
@@ -71,9 +82,9 @@ Ellipse<Scalar> equivalent_ellipse(const Grid<Scalar>& grid, const Solution<Scal
     }
   }
   FASTNORM_CHECK(count > 0, "equivalent_ellipse: no element of normal carries pressure");
-  const Scalar area = static_cast<Scalar>(count) * grid.element_area();
-  const Scalar ratio = static_cast<Scalar>(last_i - first_i + 1) * grid.dx() / (static_cast<Scalar>(last_j - first_j + 1) * grid.dy());
-  return {std::sqrt(area * ratio / pi<Scalar>), std::sqrt(area / (pi<Scalar> * ratio))};
+  return detail::ellipse_of_extent(static_cast<Scalar>(count) * grid.element_area(),
+                                   static_cast<Scalar>(last_i - first_i + 1) * grid.dx(),
+                                   static_cast<Scalar>(last_j - first_j + 1) * grid.dy());
 }
 
 /// The sensitivities of FASTSIM's creep forces to the creepages: rows Fx, Fy (N) and the

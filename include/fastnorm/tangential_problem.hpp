@@ -127,11 +127,11 @@ Scalar spin_shift(const Grid<Scalar>& grid, RollingDirection direction) {
 }
 
 /// Adds an element's traction at (x, y) to the answer's forces, spin moment about the grid's
-/// origin, element counts and frictional power, with √(x² + y²) rather than std::hypot
-/// (whose guard against overflow costs more than the whole sum; tractions and slips are far
-/// from double's range).
+/// origin and element counts, and, where it slips, `traction_times_slip` = |p||s| times its
+/// area to the frictional power.
 template <typename Scalar>
-void add_element(TangentialSolution<Scalar>& answer, Scalar area, Scalar x, Scalar y, Eigen::Index k) {
+void add_element(TangentialSolution<Scalar>& answer, Scalar area, Scalar x, Scalar y, Eigen::Index k,
+                 Scalar traction_times_slip) {
   const Scalar px = answer.traction_x(k), py = answer.traction_y(k);
   answer.force_x += area * px;
   answer.force_y += area * py;
@@ -140,9 +140,19 @@ void add_element(TangentialSolution<Scalar>& answer, Scalar area, Scalar x, Scal
     ++answer.adhesion_elements;
   } else {
     ++answer.slip_elements;
-    const Scalar sx = answer.slip_x(k), sy = answer.slip_y(k);
-    answer.frictional_power_per_speed += area * std::sqrt((px * px + py * py) * (sx * sx + sy * sy));
+    answer.frictional_power_per_speed += area * traction_times_slip;
   }
+}
+
+/// The same with |p||s| from the element's traction and slip, as √(|p|²|s|²) rather than
+/// std::hypot (whose guard against overflow costs more than the whole sum; tractions and
+/// slips are far from double's range).
+template <typename Scalar>
+void add_element(TangentialSolution<Scalar>& answer, Scalar area, Scalar x, Scalar y, Eigen::Index k) {
+  const Scalar px = answer.traction_x(k), py = answer.traction_y(k), sx = answer.slip_x(k), sy = answer.slip_y(k);
+  add_element(answer, area, x, y, k,
+              answer.state(k) == TractionState::adhesion ? Scalar(0)
+                                                          : std::sqrt((px * px + py * py) * (sx * sx + sy * sy)));
 }
 
 /// Fills the sums of add_element from every element in contact, row by row.

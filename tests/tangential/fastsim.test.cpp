@@ -20,6 +20,10 @@ using fastnorm::test::hertz_problem;
 using fastnorm::test::HertzProblem;
 using fastnorm::test::number;
 using fastnorm::test::peer_rows;
+using fastnorm::test::analytic_pressure;
+using fastnorm::test::linear_case;
+using fastnorm::test::linear_checks;
+using fastnorm::test::LinearCase;
 
 TEST_CASE("Kalker's coefficients are his table's, interpolated", "[tangential]") {
   // Table E.3 of Kalker (1990) at a/b = 0.5 and b/a = 0.5, ν = 0, 0.25, 0.5.
@@ -66,70 +70,6 @@ TEST_CASE("Kalker's coefficients are his table's, interpolated", "[tangential]")
   CHECK_THROWS_WITH(fastnorm::kalker_coefficients(1.0, 0.6), Contains("poisson_ratio"));
   CHECK_THROWS_WITH(fastnorm::kalker_coefficients(1.0, -0.1), Contains("poisson_ratio"));
 }
-
-namespace {
-
-/// CONTACT's traction bound of a simplified-theory row: on the Hertz ellipse of the row's
-/// semi-axes, parabolic p = 2Fn/(πab)(1 − x²/a² − y²/b²) or elliptic (Hertz's).
-fastnorm::Solution<> analytic_pressure(const fastnorm::Grid<>& grid, double a, double b, double fn, bool parabolic) {
-  fastnorm::Solution<> normal;
-  normal.status = fastnorm::Status::converged;
-  normal.pressure = Eigen::VectorXd::Zero(grid.size());
-  normal.in_contact = fastnorm::Solution<>::Mask::Constant(grid.size(), false);
-  for (Eigen::Index k = 0; k < grid.size(); ++k) {
-    const double x = grid.x(grid.i_of(k)), y = grid.y(grid.j_of(k));
-    const double inside = 1 - x * x / (a * a) - y * y / (b * b);
-    if (inside <= 0) continue;
-    normal.in_contact(k) = true;
-    normal.pressure(k) = parabolic ? 2 * fn / (fastnorm::pi<double> * a * b) * inside
-                                   : 3 * fn / (2 * fastnorm::pi<double> * a * b) * std::sqrt(inside);
-  }
-  normal.normal_force = normal.pressure.sum() * grid.element_area();
-  return normal;
-}
-
-/// A steel Hertzian contact of relative radii R_x, R_y under 80 kN on an n × n grid that
-/// covers ±1.1 times the semi-axes: its NORM solution, or Hertz's pressure, and Hertz's
-/// ellipse.
-struct LinearCase {
-  HertzProblem problem;
-  fastnorm::Ellipse<> ellipse;
-};
-
-LinearCase linear_case(double radius_x, double radius_y, Eigen::Index elements, bool solve_normal = true) {
-  const double shear_modulus = 8.2e10, nu = 0.28, fn = 80e3;
-  const fastnorm::Material<> material(2 * shear_modulus * (1 + nu), nu);
-  const auto hertz = fastnorm::hertz_from_force(radius_x, radius_y, material.combined_modulus(), fn);
-  const double a = hertz.semi_axis_x, b = hertz.semi_axis_y;
-  const double dx = 2.2 * a / static_cast<double>(elements), dy = 2.2 * b / static_cast<double>(elements);
-  if (solve_normal) {
-    return {hertz_problem(1 / (2 * radius_x), 1 / (2 * radius_y), elements, elements, dx, dy, shear_modulus, nu, fn),
-            {a, b}};
-  }
-  const double first_x = -static_cast<double>(elements - 1) * dx / 2, first_y = -static_cast<double>(elements - 1) * dy / 2;
-  const fastnorm::Grid<> grid(elements, elements, dx, dy, first_x, first_y);
-  return {{grid, material, analytic_pressure(grid, a, b, fn, false)}, {a, b}};
-}
-
-/// The linear theory's forces (T9) for ξ, η and φ alone, each 1e-6 (φ c for the spin).
-struct LinearCheck {
-  const char* name;
-  fastnorm::Creepage<> creepage;
-  double expected;    ///< N
-  bool longitudinal;  ///< Fx, else Fy
-};
-
-std::vector<LinearCheck> linear_checks(const LinearCase& hertz_case) {
-  const auto& material = hertz_case.problem.material;
-  const double a = hertz_case.ellipse.a, b = hertz_case.ellipse.b, c = std::sqrt(a * b), creep = 1e-6;
-  const double scale = material.combined_shear_modulus() * c * c * creep;
-  const auto kalker = fastnorm::kalker_coefficients(a / b, material.combined_poisson_ratio());
-  return {{"xi", creepage(creep, 0, 0), -scale * kalker.c11, true},
-          {"eta", creepage(0, creep, 0), -scale * kalker.c22, false},
-          {"phi", creepage(0, 0, creep / c), -scale * kalker.c23, false}};
-}
-
-}  // namespace
 
 TEST_CASE("At vanishing creepage the exact path gives Kalker's linear theory", "[tangential]") {
   // Fx = −G c² C11 ξ, Fy = −G c² (C22 η + c C23 φ) (docs/tangential.md Eq. (T9)), within 3 %

@@ -89,38 +89,15 @@ TEST_CASE("Steady rolling gives CONTACT's whole exact creep curve", "[tangential
 }
 
 TEST_CASE("The middle of a long cylinder follows Carter's two-dimensional solution", "[tangential]") {
-  // A cylinder R = 0.5 m pressed on a flat over 40 mm, about 40 contact half-widths, so that
-  // its middle strip is in plane strain. There, with identical bodies, Carter's solution
-  // is independent of the elastic constants: Fx/(mu Fn) = −[1 − (1 − xi R/(mu a))²] per unit
-  // length, a the strip's own half-width, 4 R P'/(pi E*) = a² for its load P' per metre
-  // (the ends of a flat-ended cylinder carry more, so a is a little less than the mean's).
-  const auto material = fastnorm::Material<>::steel();
-  const double radius = 0.5, nominal_half_width = 1e-3, length = 40e-3, mu = 0.3;
-  const Eigen::Index mx = 48, my = 41;
-  const double dx = 3.2 * nominal_half_width / static_cast<double>(mx), dy = length / static_cast<double>(my - 2);
-  const fastnorm::Grid<> grid(mx, my, dx, dy, -static_cast<double>(mx - 1) * dx / 2, -static_cast<double>(my - 1) * dy / 2);
-  Eigen::VectorXd h(grid.size());
-  for (Eigen::Index k = 0; k < grid.size(); ++k) {
-    const double x = grid.x(grid.i_of(k)), y = grid.y(grid.j_of(k));
-    h(k) = std::abs(y) > length / 2 ? 1.0 : x * x / (2 * radius);
-  }
-  const double pi = 3.14159265358979323846,
-               line_load = pi * material.combined_modulus() * nominal_half_width * nominal_half_width / (4 * radius);
-  const auto normal =
-      fastnorm::NormSolver<>(grid, material).solve(h, fastnorm::Loading<>::force(line_load * length));
-  REQUIRE(normal.ok());
-  const Eigen::Index middle = my / 2;
-  const auto strip_sum = [&](const Eigen::VectorXd& values) { return values.segment(middle * mx, mx).sum() * dx; };
-  const double strip_load = strip_sum(normal.pressure);  // N/m
-  const double half_width = std::sqrt(4 * radius * strip_load / (pi * material.combined_modulus()));
+  const auto cylinder = fastnorm::test::long_cylinder();
   for (const double fraction : {0.25, 0.5, 0.75}) {
-    const double xi = fraction * mu * nominal_half_width / radius;
-    const auto answer = fastnorm::solve_steady_rolling(grid, material, normal, mu, creepage(xi, 0, 0));
+    const double xi = fraction * cylinder.friction * cylinder.nominal_half_width / cylinder.radius;
+    const auto answer = fastnorm::solve_steady_rolling(cylinder.grid, cylinder.material, cylinder.normal,
+                                                       cylinder.friction, creepage(xi, 0, 0));
     REQUIRE(answer.ok());
-    const double carter = 1 - std::pow(1 - xi * radius / (mu * half_width), 2);
-    const double strip = -strip_sum(answer.traction_x) / (mu * strip_load);
-    INFO("xi R/(mu a) = " << xi * radius / (mu * half_width) << ": middle strip " << strip << ", Carter " << carter
-                          << " (a = " << half_width << " m)");
+    const double carter = cylinder.carter(xi), strip = cylinder.middle_strip_force(answer);
+    INFO("xi R/(mu a) = " << xi * cylinder.radius / (cylinder.friction * cylinder.half_width) << ": middle strip "
+                          << strip << ", Carter " << carter << " (a = " << cylinder.half_width << " m)");
     CHECK(std::abs(strip - carter) <= 0.015);
   }
 }

@@ -108,10 +108,13 @@ TEST_CASE("Creepages follow the rigid kinematics of hand calculations", "[wheelr
   }
 }
 
-TEST_CASE("The model's creep forces are FASTSIM's on its patches and enter its sums", "[wheelrail][creep]") {
+TEST_CASE("The model's creep forces are its method's on its patches and enter its sums", "[wheelrail][creep]") {
   const wr::Track track;
   const wr::Wheelset wheelset;
-  const auto options = creep_options(0.3);
+  auto options = creep_options(0.3);
+  const auto method = GENERATE(wr::CreepMethod::strip_theory, wr::CreepMethod::fastsim);
+  options.creep.method = method;
+  INFO("method " << wr::to_string(method));
   wr::WheelsetContact<> model(track, wheelset, options);
   const auto pose = lowered_pose(track, wheelset, 2e-3, 3e-3, options);
   auto velocity = rolling_at_30();
@@ -128,13 +131,17 @@ TEST_CASE("The model's creep forces are FASTSIM's on its patches and enter its s
                                      << patch.creepage.lateral << " phi " << patch.creepage.spin << ", Fx "
                                      << patch.traction.force_x << " Fs " << patch.traction.force_y);
       // The same normal answer (to rounding: the second solve reuses the first's assemblies);
-      // creepages at the reference point; FASTSIM on its pressure.
+      // creepages at the reference point; the method on its pressure.
       CHECK(patch.normal_force == Approx(alone.normal_force).epsilon(1e-12));
       const auto kinematics = wr::patch_kinematics(wheelset, pose, velocity, patch.patch.frame);
       CHECK(patch.creepage.longitudinal == kinematics.creepage.longitudinal);
       CHECK(patch.creepage.spin == kinematics.creepage.spin);
-      const auto expected = fastnorm::solve_fastsim(patch.patch.grid, options.material, patch.solution, 0.3,
-                                                    kinematics.creepage);
+      const auto expected =
+          method == wr::CreepMethod::fastsim
+              ? fastnorm::solve_fastsim(patch.patch.grid, options.material, patch.solution, 0.3, kinematics.creepage,
+                                        kinematics.direction)
+              : fastnorm::StripTheory<>(options.material)
+                    .solve(patch.patch.grid, patch.solution, 0.3, kinematics.creepage, kinematics.direction);
       CHECK(patch.traction.ok());
       CHECK(patch.traction.force_x == expected.force_x);
       CHECK(patch.traction.force_y == expected.force_y);
@@ -204,11 +211,14 @@ TEST_CASE("Creep forces refuse bad velocities and options by name", "[wheelrail]
   CHECK_THROWS_WITH(model.evaluate(pose, velocity), Contains("velocity must be finite"));
 }
 
-TEST_CASE("The model gives each patch FASTSIM's sensitivities when asked", "[wheelrail][creep]") {
+TEST_CASE("The model gives each patch its method's sensitivities when asked", "[wheelrail][creep]") {
   const wr::Track track;
   const wr::Wheelset wheelset;
   auto options = creep_options(0.3);
   options.creep.sensitivities = true;
+  const auto method = GENERATE(wr::CreepMethod::strip_theory, wr::CreepMethod::fastsim);
+  options.creep.method = method;
+  INFO("method " << wr::to_string(method));
   wr::WheelsetContact<> model(track, wheelset, options);
   const auto pose = lowered_pose(track, wheelset, 2e-3, 3e-3, options);
   const auto velocity = rolling_at_30();
@@ -216,13 +226,37 @@ TEST_CASE("The model gives each patch FASTSIM's sensitivities when asked", "[whe
   for (const auto& wheel : result.wheels) {
     for (const auto& patch : wheel.patches) {
       const auto kinematics = wr::patch_kinematics(wheelset, pose, velocity, patch.patch.frame);
-      fastnorm::TangentialSolution<double> answer;
-      fastnorm::CreepJacobian<double> expected;
-      fastnorm::solve_fastsim(patch.patch.grid, patch.solution, 0.3, kinematics.creepage,
-                              fastnorm::kalker_flexibility(fastnorm::equivalent_ellipse(patch.patch.grid, patch.solution),
-                                                           options.material),
-                              kinematics.direction, answer, &expected);
-      CHECK(patch.creep_jacobian == expected);
+      const auto& grid = patch.patch.grid;
+      if (method == wr::CreepMethod::fastsim) {
+        fastnorm::TangentialSolution<double> answer;
+        fastnorm::CreepJacobian<double> expected;
+        fastnorm::solve_fastsim(grid, patch.solution, 0.3, kinematics.creepage,
+                                fastnorm::kalker_flexibility(fastnorm::equivalent_ellipse(grid, patch.solution),
+                                                             options.material),
+                                kinematics.direction, answer, &expected);
+        CHECK(patch.creep_jacobian == expected);
+      } else {
+        // Central differences a hundred times wider than the model's: the forces are smooth
+        // in the creepages, so both agree to a percent of each column.
+        fastnorm::StripTheory<> strips(options.material);
+        const double size = std::sqrt(static_cast<double>(patch.solution.in_contact.count()) * grid.element_area() /
+                                      fastnorm::pi<double>);
+        for (int column = 0; column < 3; ++column) {
+          const double step = column == 2 ? 1e-5 / size : 1e-5;
+          Eigen::Vector3d sides[2];
+          for (int side = 0; side < 2; ++side) {
+            auto shifted = kinematics.creepage;
+            (column == 0 ? shifted.longitudinal : column == 1 ? shifted.lateral : shifted.spin) +=
+                side == 0 ? step : -step;
+            const auto answer = strips.solve(grid, patch.solution, 0.3, shifted, kinematics.direction);
+            sides[side] = {answer.force_x, answer.force_y, answer.spin_moment};
+          }
+          const Eigen::Vector3d expected = (sides[0] - sides[1]) / (2 * step);
+          INFO("column " << column << ": model " << patch.creep_jacobian.col(column).transpose() << ", wide steps "
+                         << expected.transpose());
+          CHECK((patch.creep_jacobian.col(column) - expected).norm() <= 0.01 * expected.norm());
+        }
+      }
       CHECK(patch.creep_jacobian(0, 0) < 0);  // more ξ, more negative Fx on the rail
       CHECK(patch.creep_jacobian(1, 1) < 0);
     }

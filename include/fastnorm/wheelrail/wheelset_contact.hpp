@@ -23,6 +23,7 @@
 #include "fastnorm/error.hpp"
 #include "fastnorm/material.hpp"
 #include "fastnorm/solver_spec.hpp"
+#include "fastnorm/strip_theory.hpp"
 #include "fastnorm/wheelrail/contact_search.hpp"
 #include "fastnorm/wheelrail/creepage.hpp"
 #include "fastnorm/wheelrail/patch.hpp"
@@ -133,7 +134,10 @@ class WheelsetContact {
   ///         `Solver` does not solve among them), or a reference pose at which a wheel does
   ///         not touch its rail
   WheelsetContact(Track track, Wheelset wheelset, WheelsetContactOptions options = {})
-      : track_(std::move(track)), wheelset_(std::move(wheelset)), options_(std::move(options)) {
+      : track_(std::move(track)),
+        wheelset_(std::move(wheelset)),
+        options_(std::move(options)),
+        strips_(options_.material) {
     options_.validate();
     check_spec_for<Solver>(options_.solver, "WheelsetContactOptions: solver");
     choose_element_sizes();
@@ -329,10 +333,10 @@ class WheelsetContact {
     }
   }
 
-  /// The creepages of a patch at its reference point and its creep forces by FASTSIM on its
-  /// pressure, with Kalker's flexibilities of its equivalent ellipse (docs/wheel-rail.md §10),
-  /// added to the patch's force and moment on the wheel.
-  void add_creep(const WheelsetPose& pose, const WheelsetVelocity& velocity, PatchContact& out) const {
+  /// The creepages of a patch at its reference point and its creep forces by the method of
+  /// options.creep on its pressure (docs/wheel-rail.md §10), added to the patch's force and
+  /// moment on the wheel.
+  void add_creep(const WheelsetPose& pose, const WheelsetVelocity& velocity, PatchContact& out) {
     const auto& patch = out.patch;
     const PatchKinematics kinematics = patch_kinematics(wheelset_, pose, velocity, patch.frame);
     const auto& normal = out.solution;
@@ -342,14 +346,42 @@ class WheelsetContact {
       return;
     }
     out.creepage = kinematics.creepage;
-    const auto flexibility = kalker_flexibility(equivalent_ellipse(patch.grid, normal), options_.material);
-    solve_fastsim(patch.grid, normal, *options_.creep.friction, kinematics.creepage, flexibility, kinematics.direction,
-                  out.traction, options_.creep.sensitivities ? &out.creep_jacobian : nullptr);
+    const double friction = *options_.creep.friction;
+    if (options_.creep.method == CreepMethod::fastsim) {
+      const auto flexibility = kalker_flexibility(equivalent_ellipse(patch.grid, normal), options_.material);
+      solve_fastsim(patch.grid, normal, friction, kinematics.creepage, flexibility, kinematics.direction, out.traction,
+                    options_.creep.sensitivities ? &out.creep_jacobian : nullptr);
+    } else {
+      strips_.solve(patch.grid, normal, friction, kinematics.creepage, kinematics.direction, out.traction);
+      if (options_.creep.sensitivities) strip_theory_jacobian(patch, normal, kinematics, out.creep_jacobian);
+    }
     const auto& traction = out.traction;
     out.creep_force = -(traction.force_x * Eigen::Vector3d::UnitX() + traction.force_y * patch.frame.lateral_axis());
     out.force += out.creep_force;
     out.moment += detail::cross(patch.frame.reference - wheelset_.centre(pose), out.creep_force) -
                   traction.spin_moment * patch.frame.normal();
+  }
+
+  /// d(Fx, Fy, Mz)/d(ξ, η, φ) of strip theory by central differences, steps 10⁻⁷ in ξ and η
+  /// and 10⁻⁷/c in φ (c the patch's size √(area/π)): strip theory is smooth in the
+  /// creepages but for the element where an adhesion zone ends, whose jumps are 10⁻⁵ of the
+  /// forces' scale per step and average out.
+  void strip_theory_jacobian(const ContactPatch& patch, const Solution<>& normal, const PatchKinematics& kinematics,
+                             CreepJacobian<double>& jacobian) {
+    const double friction = *options_.creep.friction;
+    const double size = std::sqrt(static_cast<double>(normal.in_contact.count()) * patch.grid.element_area() / pi<double>);
+    for (int column = 0; column < 3; ++column) {
+      const double step = column == 2 ? 1e-7 / size : 1e-7;
+      Eigen::Vector3d sides[2];
+      for (int side = 0; side < 2; ++side) {
+        Creepage<> shifted = kinematics.creepage;
+        double& value = column == 0 ? shifted.longitudinal : column == 1 ? shifted.lateral : shifted.spin;
+        value += side == 0 ? step : -step;
+        strips_.solve(patch.grid, normal, friction, shifted, kinematics.direction, difference_traction_);
+        sides[side] = {difference_traction_.force_x, difference_traction_.force_y, difference_traction_.spin_moment};
+      }
+      jacobian.col(column) = (sides[0] - sides[1]) / (2 * step);
+    }
   }
 
   /// No creep: the patch's creepages, tractions and creep force cleared, its tractions
@@ -604,6 +636,8 @@ class WheelsetContact {
   std::vector<State> spare_states_;                    // states beyond the patch count, storage kept
   std::vector<PatchContact> spare_patches_;            // result patches beyond the patch count, storage kept
   std::vector<SpareStorage> spare_storage_;            // h and solutions by length (fit_storage)
+  StripTheory<> strips_;                               // creep forces' workspace (CreepMethod::strip_theory)
+  TangentialSolution<> difference_traction_;           // strip theory's central differences
   std::vector<std::vector<std::size_t>> predecessors_;  // of each new patch (match); the first `count` in use
   std::vector<int> successor_counts_;                  // of each previous patch (match)
   std::vector<ContactRegion> regions_;                 // of the wheel being evaluated, and spares

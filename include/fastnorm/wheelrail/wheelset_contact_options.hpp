@@ -14,15 +14,25 @@
 
 namespace fastnorm::wheelrail {
 
-/// Creep forces of a WheelsetContact (docs/wheel-rail.md §10): computed by Kalker's
-/// simplified theory (FASTSIM, fastsim.hpp) on each patch's pressure whenever evaluate is
-/// given the wheelset's velocities.
+/// The fast tangential method of the time loop (docs/tangential.md §9–10).
+enum class CreepMethod {
+  strip_theory,  ///< StripTheory: Carter's strips calibrated to Kalker's linear theory
+  fastsim,       ///< Kalker's simplified theory with the flexibilities of the equivalent ellipse
+};
+
+inline const char* to_string(CreepMethod method) {
+  return method == CreepMethod::strip_theory ? "strip_theory" : "fastsim";
+}
+
+/// Creep forces of a WheelsetContact (docs/wheel-rail.md §10): computed on each patch's
+/// pressure by `method` whenever evaluate is given the wheelset's velocities.
 struct CreepOptions {
   /// Coulomb's coefficient μ of every patch; unset, evaluate with velocities is refused.
   std::optional<double> friction;
+  CreepMethod method = CreepMethod::strip_theory;
   /// Also each patch's d(Fx, Fs, Mn)/d(ξ, η, φ) (PatchContact::creep_jacobian), for an
-  /// implicit integrator's Jacobian: FASTSIM then takes about 2.3 times as long (35 against
-  /// 15 µs on a 72 × 56 patch with 868 elements in contact).
+  /// implicit integrator's Jacobian. FASTSIM differentiates its sweep (about 2.3 times the
+  /// plain solve); strip theory takes central differences, six more solves.
   bool sensitivities = false;
 
   /// @throws fastnorm::invalid_argument naming the offending field
