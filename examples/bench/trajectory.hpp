@@ -9,9 +9,9 @@
 //     roughness_norm=<x> allocations_per_step=<x> iterations_per_patch=<x>
 //
 // The wheelset moves forwards at 30 m/s, rolling (pitch rate −V/r0), with the pose's rates
-// by central differences: each step also gives every patch's creep forces (FASTSIM, μ = 0.3,
-// docs/wheel-rail.md §10), timed as tangential_us; total_us is search + h + solve, the
-// normal contact, as before.
+// by central differences: each step also gives every patch's creep forces (strip theory,
+// μ = 0.3, docs/wheel-rail.md §10; "+fastsim" after the name: FASTSIM), timed as
+// tangential_us; total_us is search + h + solve, the normal contact, as before.
 //
 // A solver runs with the model's defaults (WheelsetContactOptions::starts_warm: NORM, CG and
 // the edge-enriched polynomial basis warm, the other reduced bases cold); "+warm" or "+cold"
@@ -105,25 +105,36 @@ struct TrajectoryRun {
   double iterations_per_patch = 0;  // mean active-set or CG iterations of a patch solve
 };
 
-/// A bench name: a solver spec, and a start forced by "+warm" or "+cold" (else the default).
+/// A bench name: a solver spec, a start forced by "+warm" or "+cold" (else the default), and
+/// "+fastsim" for creep forces by FASTSIM instead of strip theory (the default).
 struct TrajectorySolver {
   fastnorm::SolverSpec<double> spec;
   std::optional<bool> warm;
+  wr::CreepMethod creep = wr::CreepMethod::strip_theory;
 
-  static TrajectorySolver parse(const std::string& name) {
-    for (const bool warm : {true, false}) {
-      const std::string suffix = warm ? "+warm" : "+cold";
-      if (name.size() > suffix.size() && name.compare(name.size() - suffix.size(), suffix.size(), suffix) == 0) {
-        return {fastnorm::SolverSpec<double>::parse(name.substr(0, name.size() - suffix.size())), warm};
-      }
-    }
-    return {fastnorm::SolverSpec<double>::parse(name), std::nullopt};
+  static TrajectorySolver parse(std::string name) {
+    TrajectorySolver solver;
+    const auto strip_suffix = [&name](const std::string& suffix) {
+      const bool found =
+          name.size() > suffix.size() && name.compare(name.size() - suffix.size(), suffix.size(), suffix) == 0;
+      if (found) name.resize(name.size() - suffix.size());
+      return found;
+    };
+    if (strip_suffix("+fastsim")) solver.creep = wr::CreepMethod::fastsim;
+    if (strip_suffix("+warm")) solver.warm = true;
+    if (strip_suffix("+cold")) solver.warm = false;
+    solver.spec = fastnorm::SolverSpec<double>::parse(name);
+    return solver;
   }
-  std::string label() const { return spec.name() + (!warm ? "" : *warm ? "+warm" : "+cold"); }
+  std::string label() const {
+    return spec.name() + (!warm ? "" : *warm ? "+warm" : "+cold") +
+           (creep == wr::CreepMethod::fastsim ? "+fastsim" : "");
+  }
   wr::WheelsetContactOptions options() const {
     wr::WheelsetContactOptions options;
     options.solver = spec;
     options.creep.friction = 0.3;
+    options.creep.method = creep;
     options.reduced_warm_start = warm;
     if (warm) options.warm_start = *warm;  // NORM and CG
     return options;

@@ -134,7 +134,7 @@ class StripTheory {
           continue;
         }
         const Eigen::Index index = static_cast<Eigen::Index>(strips_.size());
-        Strip strip{j, i, i, index};
+        Strip strip{j, i, i + 1, index};
         while (strip.end < grid.mx() && detail::carries_pressure(normal, grid.index(strip.end, j))) ++strip.end;
         i = strip.end;
         strips_.push_back(strip);
@@ -245,17 +245,22 @@ class StripTheory {
         px = large * ex - ax * small;
         py = large * ey - ay * small;
       }
+      Scalar magnitude = cap;  // |p|, known where the element slides entirely
       if (adhesion_share < 1) {
         const Scalar tx = upstream_x - dx * rigid_x / compliance.turning, ty = upstream_y - dx * wy / compliance.turning;
         const Scalar size = std::sqrt(tx * tx + ty * ty), scale = size > 0 ? slip_share * cap / size : Scalar(0);
         px += scale * tx, py += scale * ty;
+        if (size == 0) magnitude = 0;
       }
       bool adheres = adhesion_share >= Scalar(0.5);
-      const Scalar size_squared = px * px + py * py;
-      if (size_squared > cap * cap) {  // where the pressure is below the strip's ellipse
-        const Scalar scale = cap / std::sqrt(size_squared);
-        px *= scale, py *= scale;
-        adheres = false;
+      if (adhesion_share > 0) {
+        const Scalar size_squared = px * px + py * py;
+        magnitude = std::sqrt(size_squared);
+        if (magnitude > cap) {  // where the pressure is below the strip's ellipse
+          px *= cap / magnitude, py *= cap / magnitude;
+          magnitude = cap;
+          adheres = false;
+        }
       }
       upstream_x = px, upstream_y = py;
       answer.traction_x(k) = px;
@@ -269,8 +274,8 @@ class StripTheory {
         const Scalar outside = radius > 0 ? t + std::sqrt(std::max(Scalar(0), t * t - 1)) : Scalar(0);
         const Scalar sx = compliance.longitudinal * (vx + bound * ex * middle - ax * outside);
         const Scalar sy = compliance.lateral * (v0 + bound * ey * middle - ay * outside) + compliance.spin * v1 * middle;
-        const Scalar slip = std::sqrt(sx * sx + sy * sy), magnitude = std::sqrt(px * px + py * py);
-        if (magnitude > 0) answer.slip_x(k) = -slip * px / magnitude, answer.slip_y(k) = -slip * py / magnitude;
+        const Scalar slip = std::sqrt(sx * sx + sy * sy), along = magnitude > 0 ? slip / magnitude : Scalar(0);
+        answer.slip_x(k) = -along * px, answer.slip_y(k) = -along * py;
         traction_times_slip = magnitude * slip;
       }
       detail::add_element(answer, grid.element_area(), x, y, k, traction_times_slip);
