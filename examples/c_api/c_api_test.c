@@ -305,6 +305,18 @@ static void wheelset_creep_forces(void) {
     }
   }
   EXPECT(fabs(lateral - force[1]) <= 1e-9 * fabs(force[2]));
+  /* FASTSIM instead of strip theory: the same kind of answer, a few per cent of muFn apart. */
+  fastnorm_wheelset* fastsim_model = NULL;
+  options.creep_method = FASTNORM_FASTSIM;
+  REQUIRE_OK(fastnorm_wheelset_create(&options, &fastsim_model));
+  double fastsim_force[3];
+  REQUIRE_OK(fastnorm_wheelset_evaluate_moving(fastsim_model, &pose, &velocity, fastsim_force, NULL));
+  EXPECT(fastsim_force[1] != force[1]);
+  EXPECT(fabs(fastsim_force[1] - force[1]) <= 0.1 * 0.3 * fabs(force[2]));
+  fastnorm_wheelset_destroy(fastsim_model);
+  options.creep_method = 7;
+  expect_error(fastnorm_wheelset_create(&options, &fastsim_model), "creep_method");
+  options.creep_method = FASTNORM_STRIP_THEORY;
   const fastnorm_velocity standing = {0, 0, 0, 0, 0, 0};
   expect_error(fastnorm_wheelset_evaluate_moving(model, &pose, &standing, force, NULL), "velocity.forward");
   expect_error(fastnorm_wheelset_evaluate_moving(model, &pose, NULL, force, NULL), "velocity");

@@ -396,6 +396,11 @@ int fastnorm_wheelset_create(const fastnorm_wheelset_options* options, fastnorm_
     contact.distance.tolerance = options->distance_tolerance;
     FASTNORM_CHECK(options->friction >= 0, fastnorm::describe("options.friction must be >= 0 (0: none)", options->friction));
     if (options->friction > 0) contact.creep.friction = options->friction;
+    FASTNORM_CHECK(options->creep_method == FASTNORM_STRIP_THEORY || options->creep_method == FASTNORM_FASTSIM,
+                   fastnorm::describe("options.creep_method must be FASTNORM_STRIP_THEORY (0) or FASTNORM_FASTSIM (1)",
+                                      options->creep_method));
+    contact.creep.method =
+        options->creep_method == FASTNORM_FASTSIM ? wr::CreepMethod::fastsim : wr::CreepMethod::strip_theory;
     *model = new fastnorm_wheelset{wr::WheelsetContact<>(setup.track(), setup.wheelset(), contact), {}, {}, {}};
   });
 }

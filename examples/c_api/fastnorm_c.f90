@@ -19,6 +19,8 @@ module fastnorm_c
                                fastnorm_patch_merged = 2, fastnorm_patch_split = 3
   ! How an evaluate ended.
   integer(c_int), parameter :: fastnorm_step_not_solved = 0, fastnorm_step_ok = 1, fastnorm_step_patch_failed = 2
+  ! The fast tangential methods of the wheelset model.
+  integer(c_int), parameter :: fastnorm_strip_theory = 0, fastnorm_fastsim = 1
   ! How an equilibrium search ended.
   integer(c_int), parameter :: fastnorm_equilibrium_not_solved = 0, fastnorm_equilibrium_converged = 1, &
                                fastnorm_equilibrium_lost_contact = 2, fastnorm_equilibrium_not_converged = 3, &
@@ -60,6 +62,7 @@ module fastnorm_c
     integer(c_int) :: elements, stiffness, max_iterations
     real(c_double) :: distance_tolerance
     real(c_double) :: friction  ! mu of the creep forces of fastnorm_wheelset_evaluate_moving; 0: none
+    integer(c_int) :: creep_method  ! FASTNORM_STRIP_THEORY (default) or FASTNORM_FASTSIM
   end type
 
   type, bind(c) :: fastnorm_pose

@@ -43,6 +43,9 @@ enum {
   FASTNORM_NUMERICAL_ISSUE = 5
 };
 
+/* The fast tangential methods of the wheelset model (docs/tangential.md §9-10). */
+enum { FASTNORM_STRIP_THEORY = 0, FASTNORM_FASTSIM = 1 };
+
 /* The message of this thread's last failing call ("" if none). */
 FASTNORM_C_API const char* fastnorm_last_error(void);
 /* "converged", "no contact", ... for a FASTNORM_* status; "unknown" otherwise. */
@@ -167,6 +170,7 @@ typedef struct fastnorm_wheelset_options {
                                  0: exact at every element (docs/wheel-rail.md §4, item 7) */
   double friction;            /* Coulomb's mu of every patch for the creep forces of
                                  fastnorm_wheelset_evaluate_moving (> 0); 0: none (default) */
+  int creep_method;           /* FASTNORM_STRIP_THEORY (default) or FASTNORM_FASTSIM */
 } fastnorm_wheelset_options;
 
 /* Fills the defaults: "norm", S1002 on UIC60, radius 0.45 m, gauge 1.435 m, cant 1/40,

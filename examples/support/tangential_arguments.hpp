@@ -1,9 +1,10 @@
 // The steady-rolling options of the command-line tools (fastnorm-solve, fastnorm-wheelrail):
-// --friction MU [--creepage-x XI] [--creepage-y ETA] [--spin PHI] [--tangential exact|fast],
-// and the fields a tool prints for a patch's answer (docs/tangential.md §5, §9).
+// --friction MU [--creepage-x XI] [--creepage-y ETA] [--spin PHI] [--tangential exact|strip|fastsim],
+// and the fields a tool prints for a patch's answer (docs/tangential.md §5, §9, §10).
 #pragma once
 
 #include <fastnorm/fastsim.hpp>
+#include <fastnorm/strip_theory.hpp>
 #include <fastnorm/tangential_solver.hpp>
 
 #include <cstdio>
@@ -16,7 +17,7 @@ namespace fastnorm_example {
 struct TangentialArguments {
   double friction = 0;  // 0: no tangential problem
   double creepage_x = 0, creepage_y = 0, spin = 0;
-  std::string method = "exact";  // the exact path, or "fast": FASTSIM
+  std::string method = "exact";  // the exact path, "strip": strip theory, "fastsim": FASTSIM
 
   /// Adds the four options; `lateral` says what y is in this tool.
   void add_to(CommandLine& line, const std::string& lateral) {
@@ -29,9 +30,9 @@ struct TangentialArguments {
                 within(-1, 1));
     line.option("--spin", spin, "PHI", "spin creepage, rad/m, about the grid's origin (--friction)",
                 within(-1000, 1000));
-    line.option("--tangential", method, "exact|fast",
-                "the exact steady-rolling solver (default) or FASTSIM with Kalker's flexibilities of the "
-                "equivalent ellipse (--friction)");
+    line.option("--tangential", method, "exact|strip|fastsim",
+                "the exact steady-rolling solver (default), strip theory, or FASTSIM with Kalker's flexibilities "
+                "of the equivalent ellipse (--friction)");
   }
 
   /// The creepages or the method without --friction, and an unknown method, are usage errors.
@@ -41,7 +42,9 @@ struct TangentialArguments {
         throw UsageError(std::string(creepage) + " needs --friction MU");
       }
     }
-    if (method != "exact" && method != "fast") throw UsageError("--tangential must be exact or fast, not '" + method + "'");
+    if (method != "exact" && method != "strip" && method != "fastsim") {
+      throw UsageError("--tangential must be exact, strip or fastsim, not '" + method + "'");
+    }
   }
 
   bool wanted() const { return friction > 0; }
@@ -56,11 +59,13 @@ struct TangentialArguments {
 
   /// Steady rolling on `normal` (a solution on `grid`) by the chosen method, as the fields
   /// a tool appends to its line:
-  /// ` fx=<N> fs=<N> mn=<N m> nadh=<n> nslip=<n> sweeps=<k> tangential=<status>` (FASTSIM: 1 sweep).
+  /// ` fx=<N> fs=<N> mn=<N m> nadh=<n> nslip=<n> sweeps=<k> tangential=<status>` (the fast
+  /// paths: 1 sweep).
   std::string solve_fields(const fastnorm::Grid<double>& grid, const fastnorm::Material<double>& material,
                            const fastnorm::Solution<double>& normal) const {
-    const auto answer = method == "fast"
-                            ? fastnorm::solve_fastsim(grid, material, normal, friction, creepage())
+    const auto answer =
+        method == "fastsim" ? fastnorm::solve_fastsim(grid, material, normal, friction, creepage())
+        : method == "strip" ? fastnorm::StripTheory<double>(material).solve(grid, normal, friction, creepage())
                             : fastnorm::SteadyRollingSolver<double>(grid, material).solve(normal, friction, creepage());
     char text[256];
     std::snprintf(text, sizeof text, " fx=%.6g fs=%.6g mn=%.6g nadh=%ld nslip=%ld sweeps=%d tangential=%s",

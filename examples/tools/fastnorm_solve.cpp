@@ -1,7 +1,7 @@
 // fastnorm-solve: solves a .case file and compares with the result it carries.
 //
 //   fastnorm-solve CASE [--solver NAME] [--control approach|force] [--compare]
-//                  [--friction MU [--creepage-x XI] [--creepage-y ETA] [--spin PHI] [--tangential exact|fast]]
+//                  [--friction MU [--creepage-x XI] [--creepage-y ETA] [--spin PHI] [--tangential exact|strip|fastsim]]
 //                  [--write-case OUT] [--quiet] [--help]
 //
 // NAME: norm (default) | cg | elliptic | polynomial[:G] | elliptic-edge[:K] | polynomial-edge[:G[:K]].

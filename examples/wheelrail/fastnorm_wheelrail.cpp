@@ -7,7 +7,7 @@
 //                      [--wheel-profile FILE] [--rail-profile FILE] [--cant RAD]
 //                      [--radius MM] [--gauge MM] [--young GPA | --shear GPA] [--poisson NU]
 //                      [--rail-young GPA] [--rail-poisson NU]
-//                      [--friction MU [--creepage-x XI] [--creepage-y ETA] [--spin PHI] [--tangential exact|fast]]
+//                      [--friction MU [--creepage-x XI] [--creepage-y ETA] [--spin PHI] [--tangential exact|strip|fastsim]]
 //                      [--write-case PREFIX] [--svg PREFIX] [--help]
 //
 // --wheel-profile, --rail-profile: measured or worn profiles (SIMPACK .prw/.prr or plain

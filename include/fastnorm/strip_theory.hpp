@@ -80,10 +80,11 @@ class StripTheory {
   ///     p = μP √(1 − s²) ê − A √(1 − t²),   t = (s − s_c)/(1 − s_c),
   ///     μP s_c ê = −v(s_c),   A = (1 − s_c)(μP ê + (0, φ a/c_φ))                      (T14)
   ///
-  /// (Carter's solution where φ = 0; s_c the smallest root of |v(s)| = μP s), each element
-  /// the mean of (T14) over it, capped at μ p_n. Its slip zone carries μ p_n in the direction
-  /// of the upstream traction minus dx·w/L1 (FASTSIM's step). Forces on body 1, as the
-  /// exact path's.
+  /// (Carter's solution where φ = 0; s_c the smallest root of |v(s)| = μP s); its slip zone
+  /// carries μ p_n in the direction of the upstream traction minus dx·w/L1 (FASTSIM's
+  /// step). An element takes the mean of (T14) over its part in the adhesion zone and the
+  /// slip zone's traction in the share of its load the strip's ellipse puts on the rest,
+  /// capped at μ p_n. Forces on body 1, as the exact path's.
   /// @throws fastnorm::invalid_argument as SteadyRollingSolver::solve
   void solve(const Grid<Scalar>& grid, const Solution<Scalar>& normal, Scalar friction, const Creepage<Scalar>& creepage,
              RollingDirection direction, TangentialSolution<Scalar>& answer) {

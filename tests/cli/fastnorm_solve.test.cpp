@@ -199,29 +199,33 @@ TEST_CASE("fastnorm-solve --friction adds the steady-rolling creep forces", "[cl
   CHECK_THAT(without_friction.output, Contains("--spin needs --friction"));
 }
 
-TEST_CASE("fastnorm-solve --tangential fast gives FASTSIM's creep forces", "[cli][tangential]") {
-  // Full sliding is FASTSIM's as the exact path's, Fx = −μ Fn; in partial slip the two
-  // methods differ by a few percent of μFn on this sphere (docs/validation.md §7).
+TEST_CASE("fastnorm-solve --tangential strip and fastsim give the fast paths' creep forces", "[cli][tangential]") {
+  // Full sliding is the fast paths' as the exact path's, Fx = −μ Fn; in partial slip they
+  // differ from it by a few percent of μFn on this sphere (docs/validation.md §7).
   const fs::path input = write_sphere_case(scratch());
-  const auto sliding = run_solver(input.string() + " --quiet --friction 0.3 --creepage-x 0.1 --tangential fast");
-  REQUIRE(sliding.status == 0);
-  INFO(sliding.output);
-  CHECK(field(sliding.output, "sweeps") == 1);
-  CHECK(field(sliding.output, "nadh") == 0);
-  CHECK(field(sliding.output, "fx") == Approx(-0.3 * field(sliding.output, "fn")).epsilon(1e-9));
   const auto exact = run_solver(input.string() + " --quiet --friction 0.3 --creepage-x 1e-3 --creepage-y 4e-4");
-  const auto fast = run_solver(input.string() + " --quiet --friction 0.3 --creepage-x 1e-3 --creepage-y 4e-4 --tangential fast");
-  REQUIRE(fast.status == 0);
-  INFO(exact.output << fast.output);
-  CHECK(field(fast.output, "nadh") > 0);
-  CHECK(field(fast.output, "nslip") > 0);
-  const double scale = 0.3 * field(fast.output, "fn");
-  CHECK(std::abs(field(fast.output, "fx") - field(exact.output, "fx")) <= 0.1 * scale);
-  CHECK(field(fast.output, "fx") != field(exact.output, "fx"));
-  const auto unknown = run_solver(input.string() + " --friction 0.3 --tangential approximate");
+  for (const std::string method : {"strip", "fastsim"}) {
+    const auto sliding =
+        run_solver(input.string() + " --quiet --friction 0.3 --creepage-x 0.1 --tangential " + method);
+    REQUIRE(sliding.status == 0);
+    INFO(sliding.output);
+    CHECK(field(sliding.output, "sweeps") == 1);
+    CHECK(field(sliding.output, "nadh") == 0);
+    CHECK(field(sliding.output, "fx") == Approx(-0.3 * field(sliding.output, "fn")).epsilon(1e-9));
+    const auto fast = run_solver(input.string() + " --quiet --friction 0.3 --creepage-x 1e-3 --creepage-y 4e-4 --tangential " +
+                                 method);
+    REQUIRE(fast.status == 0);
+    INFO(exact.output << fast.output);
+    CHECK(field(fast.output, "nadh") > 0);
+    CHECK(field(fast.output, "nslip") > 0);
+    const double scale = 0.3 * field(fast.output, "fn");
+    CHECK(std::abs(field(fast.output, "fx") - field(exact.output, "fx")) <= 0.1 * scale);
+    CHECK(field(fast.output, "fx") != field(exact.output, "fx"));
+  }
+  const auto unknown = run_solver(input.string() + " --friction 0.3 --tangential fast");
   CHECK(unknown.status == 2);
-  CHECK_THAT(unknown.output, Contains("--tangential must be exact or fast"));
-  const auto alone = run_solver(input.string() + " --tangential fast");
+  CHECK_THAT(unknown.output, Contains("--tangential must be exact, strip or fastsim"));
+  const auto alone = run_solver(input.string() + " --tangential strip");
   CHECK(alone.status == 2);
   CHECK_THAT(alone.output, Contains("--tangential needs --friction"));
 }

@@ -120,7 +120,7 @@ def test_every_result_object_prints_its_key_figures(model):
 
 
 def test_a_moving_wheelset_gets_creep_forces_on_every_patch():
-    """With a Velocity every patch gets its creepages and FASTSIM's creep forces
+    """With a Velocity every patch gets its creepages and strip theory's creep forces
     (docs/wheel-rail.md §10), included in its force."""
     moving = fastnorm.WheelsetContact(solver="elliptic", elements=30, friction=0.3)
     pose = moving.equilibrium(load_n=200e3, yaw_rad=3e-3).pose
@@ -144,6 +144,21 @@ def test_a_moving_wheelset_gets_creep_forces_on_every_patch():
             assert np.allclose(patch.force_n, normal.force_n + creep, rtol=1e-9, atol=1e-6)
             assert np.hypot(traction.force_x_n, traction.force_y_n) <= 0.3 * patch.normal_force_n * (1 + 1e-12)
             assert traction.adhesion_elements > 0 and traction.slip_elements > 0
+
+
+def test_fastsim_is_the_other_creep_method():
+    pose = fastnorm.Pose(lateral_shift_m=0.0, vertical_m=0.1e-3, roll_rad=0.0, yaw_rad=3e-3)
+    velocity = fastnorm.Velocity(forward_m_per_s=30.0, pitch_rate_rad_per_s=-30.0 / 0.45)
+    strips = fastnorm.WheelsetContact(solver="elliptic", elements=30, friction=0.3).evaluate(pose, velocity=velocity)
+    fastsim = fastnorm.WheelsetContact(solver="elliptic", elements=30, friction=0.3,
+                                       creep_method="fastsim").evaluate(pose, velocity=velocity)
+    for a, b in zip(strips.wheels, fastsim.wheels):
+        for p, q in zip(a.patches, b.patches):
+            assert p.normal_force_n == pytest.approx(q.normal_force_n, rel=1e-12)
+            assert p.traction.force_y_n != q.traction.force_y_n
+            assert abs(p.traction.force_y_n - q.traction.force_y_n) <= 0.1 * 0.3 * p.normal_force_n
+    with pytest.raises(ValueError, match="creep_method"):
+        fastnorm.WheelsetContact(solver="elliptic", elements=20, friction=0.3, creep_method="fast")
 
 
 def test_creep_forces_need_friction_and_a_forward_speed():
