@@ -102,6 +102,33 @@ TEST_CASE("The middle of a long cylinder follows Carter's two-dimensional soluti
   }
 }
 
+TEST_CASE("Steady rolling gives CONTACT's two-dimensional Carter example", "[tangential][peer]") {
+  // CONTACT's carter2d: one row of 55 elements of 0.04 × 200 mm, h = x²/(2R), R = 500 mm,
+  // Fn = 35.78 kN, ξ = −2.4e-4, μ = 0.3. On the same grid the half-space's row is as wide as
+  // CONTACT's plane strain: the same approach and peak pressure, Fx within 0.015 μFn
+  // (measured 0.0005), the same areas to an element.
+  std::map<std::string, std::string> row;
+  for (const auto& candidate : peer_rows()) {
+    if (candidate.at("source") == "carter2d") row = candidate;
+  }
+  if (row.empty()) return fastnorm::test::reference_data_missing("peer-tangential/hertz.tsv");
+  const double mm = 1e-3, mu = number(row, "mu"), fn = number(row, "fn_N");
+  const HertzProblem problem =
+      hertz_problem(number(row, "a1_per_mm") / mm, number(row, "b1_per_mm") / mm, std::stol(row.at("mx")),
+                    std::stol(row.at("my")), number(row, "dx_mm") * mm, number(row, "dy_mm") * mm,
+                    number(row, "g_MPa") * 1e6, number(row, "nu"), fn);
+  CHECK(problem.normal.approach == Approx(number(row, "approach_mm") * mm).epsilon(1e-3));
+  CHECK(problem.normal.pressure.maxCoeff() == Approx(number(row, "pmax_MPa") * 1e6).epsilon(1e-3));
+  const auto answer = fastnorm::solve_steady_rolling(problem.grid, problem.material, problem.normal, mu,
+                                                     creepage(number(row, "cksi"), 0, 0));
+  REQUIRE(answer.ok());
+  INFO("Fx " << answer.force_x << " N (CONTACT " << row.at("fx_N") << "), adhesion " << answer.adhesion_elements
+             << " (" << row.at("nadh") << "), slip " << answer.slip_elements << " (" << row.at("nslip") << ")");
+  CHECK(std::abs(answer.force_x - number(row, "fx_N")) <= 0.015 * mu * fn);
+  CHECK(std::abs(static_cast<double>(answer.adhesion_elements) - number(row, "nadh")) <= 1);
+  CHECK(std::abs(static_cast<double>(answer.slip_elements) - number(row, "nslip")) <= 1);
+}
+
 TEST_CASE("Large creepage saturates the traction bound against the rigid slip", "[tangential]") {
   const auto& problem = small_problem();
   const double mu = 0.3, fn = problem.normal.normal_force;

@@ -90,19 +90,22 @@ TEST_CASE("Strip theory gives Carter's solution on the middle of a long cylinder
   CHECK(strips.compliances()[0].lateral == Approx(2 / shear_modulus).epsilon(0.01));
 }
 
-TEST_CASE("Strip theory follows CONTACT's exact creep curve and large-spin case", "[tangential][peer]") {
+TEST_CASE("Strip theory follows CONTACT's exact creep curve, large-spin case and 2-D Carter example", "[tangential][peer]") {
   const auto rows = peer_rows();
   if (rows.empty()) return fastnorm::test::reference_data_missing("peer-tangential/hertz.tsv");
   int curve = 0;
   for (const auto& row : rows) {
-    if (row.at("variant") != "exact" || row.at("source") == "carter2d") continue;
+    if (row.at("variant") != "exact") continue;
     const auto answer = solve_peer_row(row);
     const double mm = 1e-3, scale = number(row, "mu") * number(row, "fn_N");
-    const double c = std::sqrt(number(row, "aa_mm") * number(row, "bb_mm")) * mm;
+    const double c = row.at("source") == "carter2d" ? 0.0 : std::sqrt(number(row, "aa_mm") * number(row, "bb_mm")) * mm;
     INFO(row.at("source") << " case " << row.at("case") << ": Fx " << answer.force_x << " (CONTACT " << row.at("fx_N")
                           << "), Fy " << answer.force_y << " (" << row.at("fs_N") << "), Mz " << answer.spin_moment
                           << " N m (" << number(row, "mn_Nmm") * mm << ")");
-    if (row.at("source") == "tractcurv") {
+    if (row.at("source") == "carter2d") {
+      // One row of CONTACT's plane strain: issue 29 asks 0.03 μFn; measured 0.0007.
+      CHECK(std::abs(answer.force_x - number(row, "fx_N")) <= 0.01 * scale);
+    } else if (row.at("source") == "tractcurv") {
       // Issue 29 asks 0.04 μFn; measured 0.0049 (FASTSIM: 0.045).
       CHECK(std::abs(answer.force_x - number(row, "fx_N")) <= 0.01 * scale);
       ++curve;
