@@ -342,7 +342,7 @@ int fastnorm_case_write(const char* path, const char* name, const fastnorm_grid*
     const auto grid_value = grid_of(grid);
     fastnorm::Case<double> problem{name, "fastnorm C API", grid_value, material_of(material),
                                    fastnorm::Loading<double>::approach(), 0.0,
-                                   Eigen::Map<const Eigen::VectorXd>(h, grid_value.size()), std::nullopt};
+                                   Eigen::Map<const Eigen::VectorXd>(h, grid_value.size()), std::nullopt, std::nullopt};
     if (force_control) {
       problem.loading = fastnorm::Loading<double>::force(control_value);
     } else {

@@ -226,6 +226,7 @@ Case make_case(const std::string& name, const Grid& grid, const Material& materi
               loading_of(normal_force),
               normal_force ? 0.0 : stated_approach,
               values_on(grid, undeformed_distance, "undeformed_distance_m"),
+              std::nullopt,
               std::nullopt};
 }
 

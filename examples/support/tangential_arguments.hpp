@@ -3,11 +3,13 @@
 // and the fields a tool prints for a patch's answer (docs/tangential.md §5, §9, §10).
 #pragma once
 
+#include <fastnorm/case_file.hpp>
 #include <fastnorm/fastsim.hpp>
 #include <fastnorm/strip_theory.hpp>
 #include <fastnorm/tangential_solver.hpp>
 
 #include <cstdio>
+#include <optional>
 #include <string>
 
 #include "support/arguments.hpp"
@@ -17,6 +19,8 @@ namespace fastnorm_example {
 struct TangentialArguments {
   double friction = 0;  // 0: no tangential problem
   double creepage_x = 0, creepage_y = 0, spin = 0;
+  double spin_centre_x = 0, spin_centre_y = 0;  // a case's tangential line's; the options' are 0
+  fastnorm::RollingDirection direction = fastnorm::RollingDirection::positive_x;
   std::string method = "exact";  // the exact path, "strip": strip theory, "fastsim": FASTSIM
 
   /// Adds the four options; `lateral` says what y is in this tool.
@@ -35,9 +39,12 @@ struct TangentialArguments {
                 "of the equivalent ellipse (--friction)");
   }
 
-  /// The creepages or the method without --friction, and an unknown method, are usage errors.
-  void check(const CommandLine& line) const {
+  /// The creepages or the method without --friction, and an unknown method, are usage errors;
+  /// the method alone is not where a case's tangential line may pose the problem
+  /// (`case_may_pose`, then see adopt).
+  void check(const CommandLine& line, bool case_may_pose = false) const {
     for (const char* creepage : {"--creepage-x", "--creepage-y", "--spin", "--tangential"}) {
+      if (case_may_pose && std::string(creepage) == "--tangential") continue;
       if (line.given(creepage) && !line.given("--friction")) {
         throw UsageError(std::string(creepage) + " needs --friction MU");
       }
@@ -49,11 +56,28 @@ struct TangentialArguments {
 
   bool wanted() const { return friction > 0; }
 
+  /// A case's steady-rolling problem (its tangential line) where --friction gave none.
+  void adopt(const std::optional<fastnorm::CaseRolling<double>>& stored) {
+    if (wanted() || !stored) return;
+    friction = stored->friction;
+    creepage_x = stored->creepage.longitudinal;
+    creepage_y = stored->creepage.lateral;
+    spin = stored->creepage.spin;
+    spin_centre_x = stored->creepage.spin_centre_x;
+    spin_centre_y = stored->creepage.spin_centre_y;
+    direction = stored->direction;
+  }
+
+  /// The problem as a case's tangential line holds it.
+  fastnorm::CaseRolling<double> as_case() const { return {friction, creepage(), direction}; }
+
   fastnorm::Creepage<double> creepage() const {
     fastnorm::Creepage<double> value;
     value.longitudinal = creepage_x;
     value.lateral = creepage_y;
     value.spin = spin;
+    value.spin_centre_x = spin_centre_x;
+    value.spin_centre_y = spin_centre_y;
     return value;
   }
 
@@ -64,9 +88,11 @@ struct TangentialArguments {
   std::string solve_fields(const fastnorm::Grid<double>& grid, const fastnorm::Material<double>& material,
                            const fastnorm::Solution<double>& normal) const {
     const auto answer =
-        method == "fastsim" ? fastnorm::solve_fastsim(grid, material, normal, friction, creepage())
-        : method == "strip" ? fastnorm::StripTheory<double>(material).solve(grid, normal, friction, creepage())
-                            : fastnorm::SteadyRollingSolver<double>(grid, material).solve(normal, friction, creepage());
+        method == "fastsim"
+            ? fastnorm::solve_fastsim(grid, material, normal, friction, creepage(), direction)
+        : method == "strip"
+            ? fastnorm::StripTheory<double>(material).solve(grid, normal, friction, creepage(), direction)
+            : fastnorm::SteadyRollingSolver<double>(grid, material, direction).solve(normal, friction, creepage());
     char text[256];
     std::snprintf(text, sizeof text, " fx=%.6g fs=%.6g mn=%.6g nadh=%ld nslip=%ld sweeps=%d tangential=%s",
                   answer.force_x, answer.force_y, answer.spin_moment, static_cast<long>(answer.adhesion_elements),

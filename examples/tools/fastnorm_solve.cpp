@@ -9,10 +9,12 @@
 // the same line, when the case carries a result, by `ref_fn=<N> rel_fn_diff=<x>
 // max_abs_dp_over_pmax=<x> contact_mismatch=<n>`, and with --compare by
 // `rel_fn_err_vs_norm=<x> contact_mismatch_vs_norm=<n> max_dp_over_pmax_vs_norm=<x>
-// speedup_vs_norm=<x>` (full NORM on the same case and control), and with --friction by the
-// steady-rolling answer on the solution, `fx=<N> fs=<N> mn=<N m> nadh=<n> nslip=<n> sweeps=<k>
-// tangential=<status>` (docs/tangential.md: forces on body 1, creepages of body 1 against
-// body 2, rolling towards +x, mn about the grid's origin). Exit status: 0 solved,
+// speedup_vs_norm=<x>` (full NORM on the same case and control), and with --friction, or a
+// case with a tangential line (docs/case-format.md; --friction and the creepage options
+// replace it), by the steady-rolling answer on the solution, `fx=<N> fs=<N> mn=<N m> nadh=<n>
+// nslip=<n> sweeps=<k> tangential=<status>` (docs/tangential.md: forces on body 1, creepages
+// of body 1 against body 2, rolling towards +x unless the case says otherwise, mn about the
+// grid's origin). --write-case writes the tangential problem solved with the case. Exit status: 0 solved,
 // 1 the solver gave no usable answer, 2 bad input (the message names the file, line or
 // argument; nothing written).
 #include <fastnorm/fastnorm.hpp>
@@ -39,6 +41,7 @@ struct Arguments {
   bool quiet = false;
   bool compare = false;
   fastnorm_example::TangentialArguments tangential;
+  bool tangential_given = false;  // --tangential on the command line
 };
 
 fastnorm_example::CommandLine command_line(Arguments& a) {
@@ -69,8 +72,12 @@ double max_difference_over_peak(const Eigen::VectorXd& pressure, const Eigen::Ve
 }
 
 
-int run(const Arguments& arguments) {
+int run(Arguments arguments) {
   fastnorm::Case<> problem = fastnorm::read_case_file(arguments.case_path.front());
+  arguments.tangential.adopt(problem.rolling);
+  if (arguments.tangential_given && !arguments.tangential.wanted()) {
+    throw UsageError("--tangential needs --friction MU or a case with a tangential line");
+  }
   const fastnorm::AnySolver<> solver(arguments.solver, problem.grid, problem.material);
   if (arguments.control == "approach") {
     problem.loading = fastnorm::Loading<>::approach();  // h as it stands
@@ -122,6 +129,7 @@ int run(const Arguments& arguments) {
     result.solve_seconds = seconds;
     result.pressure = solution.pressure;
     problem.result = result;
+    if (arguments.tangential.wanted()) problem.rolling = arguments.tangential.as_case();
     problem.source = "fastnorm-solve --solver " + solver.name();
     std::ofstream out(arguments.write_path);
     if (!out) throw UsageError("cannot write '" + arguments.write_path + "'");
@@ -136,7 +144,8 @@ int main(int argc, char** argv) {
   Arguments arguments;
   auto line = command_line(arguments);
   return fastnorm_example::run_tool(line, argc, argv, [&] {
-    arguments.tangential.check(line);
+    arguments.tangential.check(line, true);
+    arguments.tangential_given = line.given("--tangential");
     return run(arguments);
   });
 }

@@ -35,7 +35,8 @@
 // the creepages of the rail against the wheel given in that frame (CONTACT's definition: a
 // positive --creepage-x gives a negative fx; --spin in rad/m), the wheelset rolling forward.
 // A first line starting with '#' states the pose and status. --write-case writes
-// PREFIX_<wheel>_<k>.case (h, approach control, solution); --svg writes PREFIX_<wheel>_<k>.svg
+// PREFIX_<wheel>_<k>.case (h, approach control, solution, and with --friction the tangential
+// line of its creepages); --svg writes PREFIX_<wheel>_<k>.svg
 // (pressure map; contact outlines of NORM and of the chosen solver).
 // Exit status: 0 equilibrium found, 1 not found or at flange climb (status on the '#' line;
 // at flange climb the equilibrium's patches are printed when one was found), 2 bad input.
@@ -44,6 +45,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -224,11 +226,18 @@ void print_patch(const char* wheel, int k, const wr::ContactPatch& patch, const 
 
 void write_patch_case(const std::string& path, const std::string& title, const std::string& solver,
                       const wr::ContactPatch& patch, const fastnorm::Material<double>& material,
-                      const fastnorm::Solution<double>& solution) {
-  const fastnorm::Case<double> problem{title, "fastnorm-wheelrail " + solver, patch.grid, material,
-                                       fastnorm::Loading<double>::approach(), 0, patch.undeformed_distance,
+                      const fastnorm::Solution<double>& solution,
+                      const std::optional<fastnorm::CaseRolling<double>>& rolling) {
+  const fastnorm::Case<double> problem{title,
+                                       "fastnorm-wheelrail " + solver,
+                                       patch.grid,
+                                       material,
+                                       fastnorm::Loading<double>::approach(),
+                                       0,
+                                       patch.undeformed_distance,
                                        fastnorm::CaseResult<double>{solution.normal_force, 0, solution.contact_count(),
-                                                                    solution.iterations, 0, solution.pressure}};
+                                                                    solution.iterations, 0, solution.pressure},
+                                       rolling};
   std::ofstream out(path);
   if (!out) throw std::runtime_error("cannot write '" + path + "'");
   fastnorm::write_case(out, problem);
@@ -260,7 +269,8 @@ void report_patches(const Arguments& a, const fastnorm::SolverSpec<double>& solv
     const std::string title = wheel + std::string(" wheel, patch ") + std::to_string(k);
     const std::string stem = std::string("_") + wheel + "_" + std::to_string(k);
     if (!a.case_prefix.empty()) {
-      write_patch_case(a.case_prefix + stem + ".case", title, solver.name(), patch, material, solution);
+      write_patch_case(a.case_prefix + stem + ".case", title, solver.name(), patch, material, solution,
+                       a.tangential.wanted() ? std::optional(a.tangential.as_case()) : std::nullopt);
     }
     if (!a.svg_prefix.empty()) {
       using fastnorm_example::number;

@@ -1,7 +1,7 @@
 #pragma once
 /// @file case_file.hpp
 /// Reader and writer of the `.case` text format (docs/case-format.md): one normal
-/// contact problem, optionally with a solution.
+/// contact problem, optionally with a steady-rolling problem on it and a solution.
 
 #include <Eigen/Core>
 #include <algorithm>
@@ -25,6 +25,7 @@
 #include "fastnorm/grid.hpp"
 #include "fastnorm/material.hpp"
 #include "fastnorm/solution.hpp"
+#include "fastnorm/tangential_problem.hpp"
 
 namespace fastnorm {
 
@@ -53,6 +54,15 @@ struct CaseResult {
   Eigen::Matrix<Scalar, Eigen::Dynamic, 1> pressure;  ///< Pa, grid.size() values
 };
 
+/// The optional steady-rolling problem of a case (its `tangential` line): Coulomb friction
+/// and the creepages of body 1 against body 2 (docs/tangential.md §5).
+template <typename Scalar = double>
+struct CaseRolling {
+  Scalar friction = 0;  ///< μ
+  Creepage<Scalar> creepage;
+  RollingDirection direction = RollingDirection::positive_x;
+};
+
 /// One normal-contact problem as stored in a `.case` file.
 template <typename Scalar = double>
 struct Case {
@@ -67,6 +77,7 @@ struct Case {
   /// h on every element (m, + = gap).
   Eigen::Matrix<Scalar, Eigen::Dynamic, 1> undeformed_distance;
   std::optional<CaseResult<Scalar>> result;
+  std::optional<CaseRolling<Scalar>> rolling;  ///< a steady-rolling problem on the normal one
 };
 
 namespace detail {
@@ -201,9 +212,16 @@ class CaseReader {
     const std::string source = rest_of_line(text_, "source");
     const Grid<Scalar> grid = read_grid();
     const Material<Scalar> material = read_material();
-    Case<Scalar> problem{name, source, grid, material, Loading<Scalar>::approach(), Scalar(0), Vector(), std::nullopt};
+    Case<Scalar> problem{name,      source,   grid,         material,    Loading<Scalar>::approach(),
+                         Scalar(0), Vector(), std::nullopt, std::nullopt};
     read_control(problem);
-    expect("h");
+    if (!lines_.next(words_, text_)) throw case_format_error(source_name_, lines_.number(), "missing 'h' line");
+    if (words_[0] == "tangential") {
+      problem.rolling = read_rolling();
+      expect("h");
+    } else if (words_[0] != "h") {
+      lines_.fail("expected 'tangential' or 'h', found '" + words_[0] + "'");
+    }
     bool more = false;
     problem.undeformed_distance = read_block("h", grid.size(), more);
     if (more) problem.result = read_result(grid.size());
@@ -263,6 +281,22 @@ class CaseReader {
     } else {
       problem.stated_approach = value;
     }
+  }
+
+  // `tangential friction <μ> xi <ξ> eta <η> phi <rad/m> xc <m> yc <m> rolling +x|-x`.
+  CaseRolling<Scalar> read_rolling() {
+    const auto t = keyed_values(lines_, words_, {"friction", "xi", "eta", "phi", "xc", "yc", "rolling"});
+    CaseRolling<Scalar> rolling;
+    rolling.friction = number(t[0], "friction");
+    if (!(rolling.friction > 0)) lines_.fail("tangential friction must be positive");
+    rolling.creepage.longitudinal = number(t[1], "xi");
+    rolling.creepage.lateral = number(t[2], "eta");
+    rolling.creepage.spin = number(t[3], "phi");
+    rolling.creepage.spin_centre_x = number(t[4], "xc");
+    rolling.creepage.spin_centre_y = number(t[5], "yc");
+    if (t[6] != "+x" && t[6] != "-x") lines_.fail("tangential rolling must be +x or -x, found '" + t[6] + "'");
+    rolling.direction = t[6] == "+x" ? RollingDirection::positive_x : RollingDirection::negative_x;
+    return rolling;
   }
 
   // A block of `count` numbers after its keyword line; `more` tells whether a keyword line
@@ -375,6 +409,13 @@ void write_case(std::ostream& out, const Case<Scalar>& problem) {
     out << "control force " << problem.loading.normal_force << '\n';
   } else {
     out << "control approach " << problem.stated_approach << '\n';
+  }
+  if (problem.rolling) {
+    const auto& rolling = *problem.rolling;
+    out << "tangential friction " << rolling.friction << " xi " << rolling.creepage.longitudinal << " eta "
+        << rolling.creepage.lateral << " phi " << rolling.creepage.spin << " xc " << rolling.creepage.spin_centre_x
+        << " yc " << rolling.creepage.spin_centre_y << " rolling "
+        << (rolling.direction == RollingDirection::positive_x ? "+x" : "-x") << '\n';
   }
   out << "h\n";
   block(problem.undeformed_distance);

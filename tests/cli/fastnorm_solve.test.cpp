@@ -34,7 +34,7 @@ fs::path write_sphere_case(const fs::path& dir) {
   const auto hertz = fastnorm::hertz_from_force(0.3, 0.3, steel.combined_modulus(), 5e4);
   const auto grid = fastnorm::hertz_grid(hertz, 15);
   fastnorm::Case<> problem{"sphere 15x15", "cli test", grid, steel, fastnorm::Loading<>::force(5e4), 0.0,
-                           fastnorm::hertz_undeformed_distance(grid, 0.3, 0.3), std::nullopt};
+                           fastnorm::hertz_undeformed_distance(grid, 0.3, 0.3), std::nullopt, std::nullopt};
   const fs::path path = dir / "sphere.case";
   std::ofstream out(path);
   fastnorm::write_case(out, problem);
@@ -197,6 +197,45 @@ TEST_CASE("fastnorm-solve --friction adds the steady-rolling creep forces", "[cl
   const auto without_friction = run_solver(input.string() + " --spin 0.5");
   CHECK(without_friction.status == 2);
   CHECK_THAT(without_friction.output, Contains("--spin needs --friction"));
+}
+
+TEST_CASE("fastnorm-solve rolls a case's tangential line, and --write-case keeps it", "[cli][tangential]") {
+  // The options on the plain case and the case's own line give the same answer; the options
+  // replace the line; a case written after a solve with --friction holds the line.
+  const fs::path dir = scratch();
+  const fs::path input = write_sphere_case(dir);
+  auto problem = fastnorm::read_case_file(input.string());
+  problem.rolling = fastnorm::CaseRolling<>{0.3, {}, fastnorm::RollingDirection::negative_x};
+  problem.rolling->creepage.longitudinal = -1e-3;
+  problem.rolling->creepage.lateral = 4e-4;
+  const fs::path rolling = dir / "rolling.case";
+  fastnorm::write_case_file(rolling.string(), problem);
+  const auto from_case = run_solver(rolling.string() + " --quiet");
+  REQUIRE(from_case.status == 0);
+  INFO(from_case.output);
+  CHECK_THAT(from_case.output, Contains("tangential=converged"));
+  // Towards −x, (−ξ, η) is the mirror in x of (ξ, η) towards +x: the same areas, −fx, fs.
+  const auto by_options = run_solver(input.string() + " --quiet --friction 0.3 --creepage-x 1e-3 --creepage-y 4e-4");
+  REQUIRE(by_options.status == 0);
+  INFO(by_options.output);
+  CHECK(field(from_case.output, "fx") == Approx(-field(by_options.output, "fx")).epsilon(1e-5));
+  CHECK(field(from_case.output, "fs") == Approx(field(by_options.output, "fs")).epsilon(1e-5));
+  CHECK(field(from_case.output, "nadh") == field(by_options.output, "nadh"));
+  const auto replaced = run_solver(rolling.string() + " --quiet --friction 0.3 --creepage-x 0.1");
+  CHECK(field(replaced.output, "nadh") == 0);
+  const auto strip = run_solver(rolling.string() + " --quiet --tangential strip");
+  CHECK(strip.status == 0);
+  CHECK(field(strip.output, "sweeps") == 1);
+
+  const fs::path out = dir / "written.case";
+  REQUIRE(run_solver(input.string() + " --quiet --friction 0.25 --spin 0.5 --write-case " + out.string()).status == 0);
+  const auto written = fastnorm::read_case_file(out.string());
+  REQUIRE(written.rolling.has_value());
+  CHECK(written.rolling->friction == 0.25);
+  CHECK(written.rolling->creepage.spin == 0.5);
+  CHECK(written.rolling->direction == fastnorm::RollingDirection::positive_x);
+  REQUIRE(run_solver(input.string() + " --quiet --write-case " + out.string()).status == 0);
+  CHECK_FALSE(fastnorm::read_case_file(out.string()).rolling.has_value());
 }
 
 TEST_CASE("fastnorm-solve --tangential strip and fastsim give the fast paths' creep forces", "[cli][tangential]") {

@@ -258,3 +258,28 @@ TEST_CASE("fastnorm-wheelrail --friction gives each patch its creep forces", "[c
   CHECK(without_friction.status == 2);
   CHECK_THAT(without_friction.output, Contains("--creepage-x needs --friction"));
 }
+
+TEST_CASE("fastnorm-wheelrail --write-case with --friction writes cases fastnorm-solve rolls the same",
+          "[cli][wheelrail][tangential]") {
+  // Each patch's case holds its tangential line; fastnorm-solve, given nothing but the case,
+  // solves the same normal and steady-rolling problems: the same fx, fs, mn and areas.
+  const fs::path dir = fs::temp_directory_path() / ("fastnorm_wheelrail_rolling_" + std::to_string(getpid()));
+  fs::create_directories(dir);
+  const auto run = run_wheelrail("--fz 1e5 --wheel right --y 0 --elements 30 --friction 0.3 --creepage-x 1e-3 "
+                                 "--creepage-y 5e-4 --spin 0.5 --tangential strip --write-case " +
+                                 (dir / "p").string());
+  REQUIRE(run.status == 0);
+  const std::string written = (dir / "p_right_1.case").string();
+  const auto problem = fastnorm::read_case_file<double>(written);
+  REQUIRE(problem.rolling.has_value());
+  CHECK(problem.rolling->friction == 0.3);
+  CHECK(problem.rolling->creepage.spin == 0.5);
+  const auto solved = fastnorm::test::run_command(FASTNORM_SOLVE_EXE, written + " --quiet --tangential strip");
+  REQUIRE(solved.status == 0);
+  INFO(run.output << solved.output);
+  for (const char* name : {"fx", "fs", "mn"}) {
+    CHECK(field(solved.output, name) == Approx(field(run.output, name)).epsilon(1e-5));  // printed to 6 digits
+  }
+  CHECK(field(solved.output, "nadh") == field(run.output, "nadh"));
+  fs::remove_all(dir);
+}

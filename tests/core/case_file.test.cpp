@@ -89,6 +89,44 @@ TEST_CASE("Case writer and reader round-trip exactly", "[case]") {
   CHECK_FALSE(approach_again.result.has_value());
 }
 
+TEST_CASE("A case's tangential line poses steady rolling and round-trips", "[case]") {
+  const auto rolling = read_text(
+      edited("control force 1500\n",
+             "control force 1500\ntangential friction 0.3 xi 1e-3 eta -5e-4 phi 0.5 xc 1e-4 yc -2e-4 rolling -x\n"));
+  REQUIRE(rolling.rolling.has_value());
+  CHECK(rolling.rolling->friction == 0.3);
+  CHECK(rolling.rolling->creepage.longitudinal == 1e-3);
+  CHECK(rolling.rolling->creepage.lateral == -5e-4);
+  CHECK(rolling.rolling->creepage.spin == 0.5);
+  CHECK(rolling.rolling->creepage.spin_centre_x == 1e-4);
+  CHECK(rolling.rolling->creepage.spin_centre_y == -2e-4);
+  CHECK(rolling.rolling->direction == fastnorm::RollingDirection::negative_x);
+  CHECK(rolling.undeformed_distance == read_text(valid_case).undeformed_distance);
+  CHECK_FALSE(read_text(valid_case).rolling.has_value());
+
+  auto changed = rolling;
+  changed.rolling->creepage.lateral = 1.0 / 3.0 * 1e-3;  // needs all 17 digits
+  changed.rolling->direction = fastnorm::RollingDirection::positive_x;
+  std::ostringstream out;
+  fastnorm::write_case(out, changed);
+  const auto again = read_text(out.str());
+  REQUIRE(again.rolling.has_value());
+  CHECK(again.rolling->creepage.lateral == changed.rolling->creepage.lateral);
+  CHECK(again.rolling->creepage.spin_centre_y == changed.rolling->creepage.spin_centre_y);
+  CHECK(again.rolling->direction == fastnorm::RollingDirection::positive_x);
+
+  // Line 9 is the tangential line: a friction that is not positive, an unknown direction,
+  // keys out of order; and it must come before h.
+  const auto with = [](const std::string& line) { return edited("control force 1500\n", "control force 1500\n" + line + "\n"); };
+  CHECK(error_line(with("tangential friction 0 xi 0 eta 0 phi 0 xc 0 yc 0 rolling +x")) == 9);
+  CHECK(error_line(with("tangential friction 0.3 xi 0 eta 0 phi 0 xc 0 yc 0 rolling +y")) == 9);
+  CHECK(error_line(with("tangential friction 0.3 eta 0 xi 0 phi 0 xc 0 yc 0 rolling +x")) == 9);
+  CHECK(error_line(with("tangential friction 0.3 xi nan eta 0 phi 0 xc 0 yc 0 rolling +x")) == 9);
+  CHECK(error_line(with("rolling friction 0.3")) == 9);
+  CHECK_THROWS_WITH(read_text(with("tangential friction 0.3 xi 0 eta 0 phi 0 xc 0 yc 0 rolling +y")),
+                    Contains("rolling must be +x or -x"));
+}
+
 TEST_CASE("Case files are written whole and read back, and what the format cannot hold is refused", "[case]") {
   namespace fs = std::filesystem;
   const fs::path path = fs::temp_directory_path() / ("fastnorm_case_" + std::to_string(getpid()) + ".case");
