@@ -8,7 +8,7 @@
 //                      [--radius MM] [--gauge MM] [--young GPA | --shear GPA] [--poisson NU]
 //                      [--rail-young GPA] [--rail-poisson NU]
 //                      [--friction MU [--creepage-x XI] [--creepage-y ETA] [--spin PHI] [--tangential exact|strip|fastsim]]
-//                      [--write-case PREFIX] [--svg PREFIX] [--help]
+//                      [--patch-fn N,...] [--write-case PREFIX] [--svg PREFIX] [--help]
 //
 // --wheel-profile, --rail-profile: measured or worn profiles (SIMPACK .prw/.prr or plain
 // 'y z' text in mm; docs/wheel-rail.md §1) instead of the closed-form S1002 and UIC60 (MB);
@@ -38,6 +38,10 @@
 // PREFIX_<wheel>_<k>.case (h, approach control, solution, and with --friction the tangential
 // line of its creepages); --svg writes PREFIX_<wheel>_<k>.svg
 // (pressure map; contact outlines of NORM and of the chosen solver).
+// --patch-fn N,... prescribes each printed patch's normal force, in order (CONTACT's
+// per-patch Fn): its normal problem is solved again in force control by the same solver
+// (approach= then adds the solve's own approach; stiffness=nan), and the creep forces and
+// written cases follow that solution (the case in force control).
 // Exit status: 0 equilibrium found, 1 not found or at flange climb (status on the '#' line;
 // at flange climb the equilibrium's patches are printed when one was found), 2 bad input.
 #include <fastnorm/fastnorm.hpp>
@@ -67,6 +71,7 @@ struct Arguments {
   std::string solver = "norm";
   bool compare = false;
   std::string case_prefix, svg_prefix;
+  std::vector<double> patch_fn;  // N per printed patch, in order: their normal problems in force control
   std::string wheel_profile, rail_profile;
   double cant = std::atan(1.0 / 40);
   double radius_mm = 450, gauge_mm = 1435;
@@ -109,6 +114,10 @@ fastnorm_example::CommandLine command_line(Arguments& a) {
   line.option("--rail-young", a.rail_young_gpa, "GPA", "the rail's Young's modulus, if not the wheel's",
               within(1, 2000));
   line.option("--rail-poisson", a.rail_poisson, "", "the rail's Poisson's ratio, if not the wheel's", within(0, 0.5));
+  line.option("--patch-fn", a.patch_fn, "N,...",
+              "prescribe each patch's normal force, in the order printed: its normal problem solved again "
+              "in force control (CONTACT's per-patch Fn)",
+              strictly_within(0, 1e8));
   line.option("--write-case", a.case_prefix, "PREFIX", "write PREFIX_<wheel>_<k>.case per patch");
   line.option("--svg", a.svg_prefix, "PREFIX", "draw PREFIX_<wheel>_<k>.svg per patch");
   a.tangential.add_to(line, "the patch's s (body 1 the rail)");
@@ -217,26 +226,29 @@ int run_fixed_pose(const Arguments& a, const Setup& setup, const fastnorm::Solve
 }
 
 void print_patch(const char* wheel, int k, const wr::ContactPatch& patch, const fastnorm::Solution<double>& solution) {
+  // The patch's h holds the pose's interpenetration; a solve in force control adds its own
+  // approach (0 in approach control).
   std::printf("wheel=%s patch=%d fn=%.6g ncontact=%ld pmax=%.6g x_track=%.4f y_track=%.4f contact_angle=%.6f "
               "approach=%.6e",
               wheel, k, solution.normal_force, static_cast<long>(solution.contact_count()), solution.pressure.maxCoeff(),
               patch.frame.reference.x() * 1e3, patch.frame.reference.y() * 1e3, patch.frame.contact_angle(),
-              -patch.undeformed_distance.minCoeff());
+              -patch.undeformed_distance.minCoeff() + solution.approach);
 }
 
 void write_patch_case(const std::string& path, const std::string& title, const std::string& solver,
                       const wr::ContactPatch& patch, const fastnorm::Material<double>& material,
-                      const fastnorm::Solution<double>& solution,
+                      const fastnorm::Solution<double>& solution, const fastnorm::Loading<double>& loading,
                       const std::optional<fastnorm::CaseRolling<double>>& rolling) {
   const fastnorm::Case<double> problem{title,
                                        "fastnorm-wheelrail " + solver,
                                        patch.grid,
                                        material,
-                                       fastnorm::Loading<double>::approach(),
+                                       loading,
                                        0,
                                        patch.undeformed_distance,
-                                       fastnorm::CaseResult<double>{solution.normal_force, 0, solution.contact_count(),
-                                                                    solution.iterations, 0, solution.pressure},
+                                       fastnorm::CaseResult<double>{solution.normal_force, solution.approach,
+                                                                    solution.contact_count(), solution.iterations, 0,
+                                                                    solution.pressure},
                                        rolling};
   std::ofstream out(path);
   if (!out) throw std::runtime_error("cannot write '" + path + "'");
@@ -247,19 +259,30 @@ void write_patch_case(const std::string& path, const std::string& title, const s
 void report_patches(const Arguments& a, const fastnorm::SolverSpec<double>& solver,
                     const fastnorm::Material<double>& material, const std::vector<const wr::PatchContact*>& patches) {
   const bool solved_by_norm = solver.kind == fastnorm::SolverSpec<double>::Kind::norm;
+  if (!a.patch_fn.empty() && a.patch_fn.size() != patches.size()) {
+    throw UsageError("--patch-fn gives " + std::to_string(a.patch_fn.size()) + " forces for " +
+                     std::to_string(patches.size()) + " patches");
+  }
   int number_on_side[2] = {0, 0};
-  for (const wr::PatchContact* contact : patches) {
+  for (std::size_t n = 0; n < patches.size(); ++n) {
+    const wr::PatchContact* contact = patches[n];
     const auto& patch = contact->patch;
-    const auto& solution = contact->solution;
+    const auto solution =
+        a.patch_fn.empty() ? contact->solution
+                           : fastnorm::AnySolver<double>(solver, patch.grid, material)
+                                 .solve(patch.undeformed_distance, fastnorm::Loading<double>::force(a.patch_fn[n]));
     const int k = ++number_on_side[patch.frame.side == wr::Side::right];
     const char* wheel = wr::to_string(patch.frame.side);
     print_patch(wheel, k, patch, solution);
-    std::printf(" stiffness=%.6e at_edge=%d", contact->stiffness, solution.at_edge ? 1 : 0);
+    // The model's stiffness is its own contact's: none for a force prescribed by --patch-fn.
+    std::printf(" stiffness=%.6e at_edge=%d", a.patch_fn.empty() ? contact->stiffness : std::nan(""),
+                solution.at_edge ? 1 : 0);
     // Full NORM on the same patch, for --compare and the outline in --svg.
     fastnorm::Solution<double> norm = solution;
     if (!solved_by_norm && (a.compare || !a.svg_prefix.empty())) {
       norm = fastnorm::NormSolver<double>(patch.grid, material)
-                 .solve(patch.undeformed_distance, fastnorm::Loading<double>::approach());
+                 .solve(patch.undeformed_distance, a.patch_fn.empty() ? fastnorm::Loading<double>::approach()
+                                                                      : fastnorm::Loading<double>::force(a.patch_fn[n]));
     }
     if (a.compare) std::printf(" rel_fn_err_vs_norm=%.3e", solution.normal_force / norm.normal_force - 1);
     if (a.tangential.wanted() && solution.ok()) {
@@ -270,6 +293,8 @@ void report_patches(const Arguments& a, const fastnorm::SolverSpec<double>& solv
     const std::string stem = std::string("_") + wheel + "_" + std::to_string(k);
     if (!a.case_prefix.empty()) {
       write_patch_case(a.case_prefix + stem + ".case", title, solver.name(), patch, material, solution,
+                       a.patch_fn.empty() ? fastnorm::Loading<double>::approach()
+                                          : fastnorm::Loading<double>::force(a.patch_fn[n]),
                        a.tangential.wanted() ? std::optional(a.tangential.as_case()) : std::nullopt);
     }
     if (!a.svg_prefix.empty()) {

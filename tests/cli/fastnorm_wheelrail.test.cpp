@@ -259,6 +259,34 @@ TEST_CASE("fastnorm-wheelrail --friction gives each patch its creep forces", "[c
   CHECK_THAT(without_friction.output, Contains("--creepage-x needs --friction"));
 }
 
+TEST_CASE("fastnorm-wheelrail --patch-fn prescribes each patch's normal force", "[cli][wheelrail][tangential]") {
+  // Centred, the two patches are mirror images: 90 and 110 kN instead of their own 100 kN
+  // give those forces, a smaller and a larger approach and contact, and creep forces that
+  // grow with the load (in partial slip Fx grows less than in proportion).
+  const auto own = run_wheelrail("--y 0 --elements 30 --friction 0.3 --creepage-x 1e-3");
+  const auto given = run_wheelrail("--y 0 --elements 30 --friction 0.3 --creepage-x 1e-3 --patch-fn 90000,110000");
+  REQUIRE(own.status == 0);
+  REQUIRE(given.status == 0);
+  const auto patch_line = [](const std::string& output, const std::string& wheel) {
+    const auto at = output.find("wheel=" + wheel + " patch=1 ");
+    REQUIRE(at != std::string::npos);
+    return output.substr(at, output.find('\n', at) - at);
+  };
+  const std::string left = patch_line(given.output, "left"), right = patch_line(given.output, "right");
+  const std::string reference = patch_line(own.output, "left");
+  INFO(reference << "\n" << left << "\n" << right);
+  CHECK(field(left, "fn") == Approx(90000).epsilon(1e-5));
+  CHECK(field(right, "fn") == Approx(110000).epsilon(1e-5));
+  CHECK(field(left, "approach") < field(reference, "approach"));
+  CHECK(field(right, "approach") > field(reference, "approach"));
+  CHECK(field(left, "ncontact") < field(right, "ncontact"));
+  CHECK(-field(left, "fx") < -field(reference, "fx"));
+  CHECK(-field(right, "fx") > -field(reference, "fx"));
+  const auto miscounted = run_wheelrail("--y 0 --elements 30 --patch-fn 90000");
+  CHECK(miscounted.status == 2);
+  CHECK_THAT(miscounted.output, Contains("--patch-fn gives 1 forces for 2 patches"));
+}
+
 TEST_CASE("fastnorm-wheelrail --write-case with --friction writes cases fastnorm-solve rolls the same",
           "[cli][wheelrail][tangential]") {
   // Each patch's case holds its tangential line; fastnorm-solve, given nothing but the case,
