@@ -37,23 +37,16 @@ struct Ellipse {
   Scalar a = 0, b = 0;
 };
 
-/// Kalker's flexibilities for an ellipse (docs/tangential.md Eq. (T10)), those with which
-/// the simplified theory gives the linear theory's forces (T9) in full adhesion:
-/// L1 = 8a/(3 G C11), L2 = 8a/(3 G C22), L3 = π a²/(4 G c C23), c = √(ab), G and ν the
-/// combined constants of `material`.
-/// @throws fastnorm::invalid_argument for semi-axes that are not positive and finite
+namespace detail {
+
+/// (T10) for an ellipse, the combined shear modulus and Kalker's coefficients there.
 template <typename Scalar>
-Flexibility<Scalar> kalker_flexibility(const Ellipse<Scalar>& ellipse, const Material<Scalar>& material) {
-  check_positive(ellipse.a, "kalker_flexibility: ellipse.a (m)");
-  check_positive(ellipse.b, "kalker_flexibility: ellipse.b (m)");
-  const Scalar shear_modulus = material.combined_shear_modulus();
-  const auto coefficients = kalker_coefficients(ellipse.a / ellipse.b, material.combined_poisson_ratio());
+Flexibility<Scalar> flexibility_of(const Ellipse<Scalar>& ellipse, Scalar shear_modulus,
+                                   const KalkerCoefficients<Scalar>& coefficients) {
   const Scalar c = std::sqrt(ellipse.a * ellipse.b);
   return {8 * ellipse.a / (3 * shear_modulus * coefficients.c11), 8 * ellipse.a / (3 * shear_modulus * coefficients.c22),
           pi<Scalar> * ellipse.a * ellipse.a / (4 * shear_modulus * c * coefficients.c23)};
 }
-
-namespace detail {
 
 /// The ellipse of area `area` whose ratio a/b is `length` (along x) over `width`.
 template <typename Scalar>
@@ -63,6 +56,19 @@ Ellipse<Scalar> ellipse_of_extent(Scalar area, Scalar length, Scalar width) {
 }
 
 }  // namespace detail
+
+/// Kalker's flexibilities for an ellipse (docs/tangential.md Eq. (T10)), those with which
+/// the simplified theory gives the linear theory's forces (T9) in full adhesion:
+/// L1 = 8a/(3 G C11), L2 = 8a/(3 G C22), L3 = π a²/(4 G c C23), c = √(ab), G and ν the
+/// combined constants of `material`.
+/// @throws fastnorm::invalid_argument for semi-axes that are not positive and finite
+template <typename Scalar>
+Flexibility<Scalar> kalker_flexibility(const Ellipse<Scalar>& ellipse, const Material<Scalar>& material) {
+  check_positive(ellipse.a, "kalker_flexibility: ellipse.a (m)");
+  check_positive(ellipse.b, "kalker_flexibility: ellipse.b (m)");
+  return detail::flexibility_of(ellipse, material.combined_shear_modulus(),
+                                kalker_coefficients(ellipse.a / ellipse.b, material.combined_poisson_ratio()));
+}
 
 /// The ellipse equivalent to the contact area of `normal` on `grid`: the same area, and the
 /// ratio a/b of the area's length along x to its width (the extents of its elements).

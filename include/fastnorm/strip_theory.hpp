@@ -192,7 +192,7 @@ class StripTheory {
                               pi<Scalar> * pi<Scalar> / (2 * shear_modulus * coefficients.c22),
                               pi<Scalar> / 2 * extent.squared_half_lengths * grid.dy() /
                                   (shear_modulus * c * c * c * coefficients.c23),
-                              kalker_flexibility(ellipse, material_).longitudinal});
+                              detail::flexibility_of(ellipse, shear_modulus, coefficients).longitudinal});
     }
   }
 
@@ -239,7 +239,10 @@ class StripTheory {
         const Scalar end = std::max(low, zone_end);
         const Scalar large_end = detail::ellipse_integral(end);
         const Scalar small_end = detail::ellipse_integral(std::max(Scalar(-1), (end - centre_s) * inverse_radius));
-        if (adhesion_share < 1) slip_share = (large_end - detail::ellipse_integral(low)) / (large_edge - detail::ellipse_integral(low));
+        if (adhesion_share < 1) {
+          const Scalar large_low = detail::ellipse_integral(low);
+          slip_share = (large_end - large_low) / (large_edge - large_low);
+        }
         const Scalar large = bound * (large_edge - large_end) * per_length;
         const Scalar small = radius * (small_edge - small_end) * per_length;
         large_edge = large_end, small_edge = small_end;

@@ -24,6 +24,13 @@ fastnorm::test::Outcome run_wheelrail(const std::string& arguments) {
   return fastnorm::test::run_command(FASTNORM_WHEELRAIL_EXE, arguments);
 }
 
+/// The line of the first patch of `wheel` (left, right) in a run's output.
+std::string patch_line(const std::string& output, const std::string& wheel) {
+  const auto at = output.find("wheel=" + wheel + " patch=1 ");
+  REQUIRE(at != std::string::npos);
+  return output.substr(at, output.find('\n', at) - at);
+}
+
 }  // namespace
 
 TEST_CASE("fastnorm-wheelrail prints one line per patch", "[cli][wheelrail]") {
@@ -239,11 +246,6 @@ TEST_CASE("fastnorm-wheelrail --friction gives each patch its creep forces", "[c
       run_wheelrail("--y 0 --elements 30 --friction 0.3 --creepage-x 1e-3 --creepage-y -5e-4 --spin -0.5");
   REQUIRE(forward.status == 0);
   REQUIRE(mirrored.status == 0);
-  const auto patch_line = [](const std::string& output, const std::string& wheel) {
-    const auto at = output.find("wheel=" + wheel + " patch=1 ");
-    REQUIRE(at != std::string::npos);
-    return output.substr(at, output.find('\n', at) - at);
-  };
   const std::string left = patch_line(forward.output, "left"), right = patch_line(mirrored.output, "right");
   INFO(left << "\n" << right);
   CHECK(field(left, "nadh") > 0);
@@ -267,11 +269,6 @@ TEST_CASE("fastnorm-wheelrail --patch-fn prescribes each patch's normal force", 
   const auto given = run_wheelrail("--y 0 --elements 30 --friction 0.3 --creepage-x 1e-3 --patch-fn 90000,110000");
   REQUIRE(own.status == 0);
   REQUIRE(given.status == 0);
-  const auto patch_line = [](const std::string& output, const std::string& wheel) {
-    const auto at = output.find("wheel=" + wheel + " patch=1 ");
-    REQUIRE(at != std::string::npos);
-    return output.substr(at, output.find('\n', at) - at);
-  };
   const std::string left = patch_line(given.output, "left"), right = patch_line(given.output, "right");
   const std::string reference = patch_line(own.output, "left");
   INFO(reference << "\n" << left << "\n" << right);

@@ -79,6 +79,20 @@ inline double number(const std::map<std::string, std::string>& row, const std::s
   return std::stod(row.at(column));
 }
 
+/// CONTACT's normal problem of a peer row (module 3: h = A1 x² + B1 y², its grid, material
+/// and Fn; CONTACT's mm and N/mm² converted to SI), solved by NORM.
+inline HertzProblem peer_row_problem(const std::map<std::string, std::string>& row) {
+  const double mm = 1e-3;
+  return hertz_problem(number(row, "a1_per_mm") / mm, number(row, "b1_per_mm") / mm, std::stol(row.at("mx")),
+                       std::stol(row.at("my")), number(row, "dx_mm") * mm, number(row, "dy_mm") * mm,
+                       number(row, "g_MPa") * 1e6, number(row, "nu"), number(row, "fn_N"));
+}
+
+/// The creepages of a peer row in SI (φ from rad/mm to rad/m).
+inline fastnorm::Creepage<> peer_row_creepage(const std::map<std::string, std::string>& row) {
+  return creepage(number(row, "cksi"), number(row, "ceta"), number(row, "cphi_per_mm") / 1e-3);
+}
+
 /// The two symmetries every steady-rolling solver keeps, as sections of the calling test:
 /// the left/right mirror, (ξ, −η, −φ) gives (Fx, −Fy, −Mz) and the same areas, and the
 /// reversed rolling direction, (−ξ, η, −φ) towards −x gives (−Fx, Fy, −Mz). `solve(creepage,

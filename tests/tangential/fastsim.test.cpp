@@ -140,9 +140,8 @@ TEST_CASE("FASTSIM gives CONTACT's simplified-theory results", "[tangential][pee
     const auto normal = analytic_pressure(grid, a, b, fn, variant == "parabolic+fastsim");
     const auto direction = number(row, "chi_rad") == 0 ? fastnorm::RollingDirection::positive_x
                                                         : fastnorm::RollingDirection::negative_x;
-    const auto answer = fastnorm::solve_fastsim(
-        grid, normal, mu, creepage(number(row, "cksi"), number(row, "ceta"), number(row, "cphi_per_mm") / mm),
-        series_flexibility.at(series), direction);
+    const auto answer = fastnorm::solve_fastsim(grid, normal, mu, fastnorm::test::peer_row_creepage(row),
+                                                series_flexibility.at(series), direction);
     REQUIRE(answer.ok());
     const double c = std::sqrt(a * b), power = answer.frictional_power_per_speed * number(row, "veloc_mm_s") * mm;
     INFO(row.at("source") << " case " << row.at("case") << " (" << variant << ", " << mx << " x " << my << "): Fx "

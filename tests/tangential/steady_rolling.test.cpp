@@ -32,15 +32,11 @@ const HertzProblem& small_problem() {
 /// `force_tolerance`·μFn and the spin moment within `moment_tolerance`·μFn·c, c = √(ab).
 void check_peer_row(const std::map<std::string, std::string>& row, double force_tolerance, double moment_tolerance) {
   const double mm = 1e-3;
-  const HertzProblem problem =
-      hertz_problem(number(row, "a1_per_mm") / mm, number(row, "b1_per_mm") / mm, std::stol(row.at("mx")),
-                    std::stol(row.at("my")), number(row, "dx_mm") * mm, number(row, "dy_mm") * mm,
-                    number(row, "g_MPa") * 1e6, number(row, "nu"), number(row, "fn_N"));
+  const HertzProblem problem = fastnorm::test::peer_row_problem(row);
   REQUIRE(number(row, "chi_rad") == 0);  // the peer rows roll towards +x
   const double mu = number(row, "mu"), fn = number(row, "fn_N");
-  const auto answer = fastnorm::solve_steady_rolling(
-      problem.grid, problem.material, problem.normal, mu,
-      creepage(number(row, "cksi"), number(row, "ceta"), number(row, "cphi_per_mm") / mm));
+  const auto answer = fastnorm::solve_steady_rolling(problem.grid, problem.material, problem.normal, mu,
+                                                     fastnorm::test::peer_row_creepage(row));
   REQUIRE(answer.ok());
   const double c = std::sqrt(number(row, "aa_mm") * number(row, "bb_mm")) * mm;
   INFO(row.at("source") << " case " << row.at("case") << ": Fx " << answer.force_x << " (CONTACT " << row.at("fx_N")
@@ -113,10 +109,7 @@ TEST_CASE("Steady rolling gives CONTACT's two-dimensional Carter example", "[tan
   }
   if (row.empty()) return fastnorm::test::reference_data_missing("peer-tangential/hertz.tsv");
   const double mm = 1e-3, mu = number(row, "mu"), fn = number(row, "fn_N");
-  const HertzProblem problem =
-      hertz_problem(number(row, "a1_per_mm") / mm, number(row, "b1_per_mm") / mm, std::stol(row.at("mx")),
-                    std::stol(row.at("my")), number(row, "dx_mm") * mm, number(row, "dy_mm") * mm,
-                    number(row, "g_MPa") * 1e6, number(row, "nu"), fn);
+  const HertzProblem problem = fastnorm::test::peer_row_problem(row);
   CHECK(problem.normal.approach == Approx(number(row, "approach_mm") * mm).epsilon(1e-3));
   CHECK(problem.normal.pressure.maxCoeff() == Approx(number(row, "pmax_MPa") * 1e6).epsilon(1e-3));
   const auto answer = fastnorm::solve_steady_rolling(problem.grid, problem.material, problem.normal, mu,

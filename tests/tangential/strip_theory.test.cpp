@@ -13,7 +13,6 @@
 
 using Catch::Matchers::Contains;
 using fastnorm::test::creepage;
-using fastnorm::test::hertz_problem;
 using fastnorm::test::HertzProblem;
 using fastnorm::test::linear_case;
 using fastnorm::test::linear_checks;
@@ -26,24 +25,14 @@ namespace {
 /// Strip theory on CONTACT's problem of a peer row (mm, N, rad/mm converted to SI); the
 /// normal problem solved once per example (the rows of one example share it).
 fastnorm::TangentialSolution<> solve_peer_row(const std::map<std::string, std::string>& row) {
-  const double mm = 1e-3;
   static std::map<std::string, HertzProblem> problems;
   auto found = problems.find(row.at("source"));
-  if (found == problems.end()) {
-    found = problems
-                .emplace(row.at("source"),
-                         hertz_problem(number(row, "a1_per_mm") / mm, number(row, "b1_per_mm") / mm,
-                                       std::stol(row.at("mx")), std::stol(row.at("my")), number(row, "dx_mm") * mm,
-                                       number(row, "dy_mm") * mm, number(row, "g_MPa") * 1e6, number(row, "nu"),
-                                       number(row, "fn_N")))
-                .first;
-  }
+  if (found == problems.end()) found = problems.emplace(row.at("source"), fastnorm::test::peer_row_problem(row)).first;
   const HertzProblem& problem = found->second;
   REQUIRE(number(row, "chi_rad") == 0);
   REQUIRE(problem.normal.normal_force == Approx(number(row, "fn_N")).epsilon(1e-9));
   auto answer = fastnorm::StripTheory<>(problem.material)
-                    .solve(problem.grid, problem.normal, number(row, "mu"),
-                           creepage(number(row, "cksi"), number(row, "ceta"), number(row, "cphi_per_mm") / mm));
+                    .solve(problem.grid, problem.normal, number(row, "mu"), fastnorm::test::peer_row_creepage(row));
   REQUIRE(answer.ok());
   return answer;
 }
