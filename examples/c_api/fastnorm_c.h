@@ -227,7 +227,7 @@ typedef struct fastnorm_patch {
   /* After fastnorm_wheelset_evaluate_moving (else zero, creep.status FASTNORM_NOT_SOLVED): the
    * creepages of the rail against the wheel at reference (the spin centre), the creep
    * forces on the rail in the patch frame (creep.force_x = Fx along e_x, creep.force_y = Fs
-   * along t_s, creep.spin_moment = Mn about reference; FASTSIM, sweeps 1), and the creep
+   * along t_s, creep.spin_moment = Mn about reference; options.creep_method's, sweeps 1), and the creep
    * force on the wheel, -(Fx e_x + Fs t_s), track frame (N). */
   fastnorm_creepage creepage;
   fastnorm_tangential_result creep;
@@ -255,7 +255,8 @@ FASTNORM_C_API void fastnorm_wheelset_destroy(fastnorm_wheelset* model);
 FASTNORM_C_API int fastnorm_wheelset_evaluate(fastnorm_wheelset* model, const fastnorm_pose* pose, double* force,
                                               double* moment);
 /* The same with the wheelset moving at velocity: every patch's creepages and creep forces as
- * well (FASTSIM, docs/wheel-rail.md §10), which force and moment include; needs
+ * well (strip theory or FASTSIM, options.creep_method; docs/wheel-rail.md §10), which force
+ * and moment include; needs
  * options.friction > 0. */
 FASTNORM_C_API int fastnorm_wheelset_evaluate_moving(fastnorm_wheelset* model, const fastnorm_pose* pose,
                                                      const fastnorm_velocity* velocity, double* force, double* moment);

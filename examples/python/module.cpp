@@ -134,15 +134,22 @@ PyTangentialSolution to_python(const Grid& grid, const fastnorm::TangentialSolut
   return out;
 }
 
+// The rolling direction a Python call names, '+x' or '-x'.
+fastnorm::RollingDirection direction_of(const std::string& rolling) {
+  FASTNORM_CHECK(rolling == "+x" || rolling == "-x", "rolling must be '+x' or '-x', not '" + rolling + "'");
+  return rolling == "+x" ? fastnorm::RollingDirection::positive_x : fastnorm::RollingDirection::negative_x;
+}
+
+fastnorm::Creepage<double> creepage_of(double creepage_x, double creepage_y, double spin, double spin_centre_x,
+                                       double spin_centre_y) {
+  return {creepage_x, creepage_y, spin, spin_centre_x, spin_centre_y};
+}
+
 PyTangentialSolution solve_steady_rolling(const Grid& grid, const Material& material, const PySolution& normal,
                                           double friction, double creepage_x, double creepage_y, double spin,
-                                          const std::string& rolling) {
-  FASTNORM_CHECK(rolling == "+x" || rolling == "-x", "rolling must be '+x' or '-x', not '" + rolling + "'");
-  fastnorm::Creepage<double> creepage;
-  creepage.longitudinal = creepage_x;
-  creepage.lateral = creepage_y;
-  creepage.spin = spin;
-  const auto direction = rolling == "+x" ? fastnorm::RollingDirection::positive_x : fastnorm::RollingDirection::negative_x;
+                                          double spin_centre_x, double spin_centre_y, const std::string& rolling) {
+  const auto creepage = creepage_of(creepage_x, creepage_y, spin, spin_centre_x, spin_centre_y);
+  const auto direction = direction_of(rolling);
   fastnorm::TangentialSolution<double> answer;
   {
     py::gil_scoped_release release;
@@ -216,8 +223,21 @@ class PySolver {
 // A .case file's content.
 using Case = fastnorm::Case<double>;
 
+// A case's steady-rolling problem (its tangential line), checked as the reader checks it.
+fastnorm::CaseRolling<double> make_rolling(double friction, double creepage_x, double creepage_y, double spin,
+                                           double spin_centre_x, double spin_centre_y, const std::string& rolling) {
+  FASTNORM_CHECK(friction > 0 && std::isfinite(friction), fastnorm::describe("friction must be positive", friction));
+  for (const auto& [value, name] : {std::pair<double, const char*>{creepage_x, "creepage_x"}, {creepage_y, "creepage_y"},
+                                    {spin, "spin_per_m"}, {spin_centre_x, "spin_centre_x_m"},
+                                    {spin_centre_y, "spin_centre_y_m"}}) {
+    FASTNORM_CHECK(std::isfinite(value), fastnorm::describe(std::string(name) + " must be finite", value));
+  }
+  return {friction, creepage_of(creepage_x, creepage_y, spin, spin_centre_x, spin_centre_y), direction_of(rolling)};
+}
+
 Case make_case(const std::string& name, const Grid& grid, const Material& material,
-               const InputArray& undeformed_distance, std::optional<double> normal_force, double stated_approach) {
+               const InputArray& undeformed_distance, std::optional<double> normal_force, double stated_approach,
+               std::optional<fastnorm::CaseRolling<double>> rolling) {
   fastnorm::check_case_material(material);  // what write_case can store
   return Case{name,
               "fastnorm Python module",
@@ -227,7 +247,7 @@ Case make_case(const std::string& name, const Grid& grid, const Material& materi
               normal_force ? 0.0 : stated_approach,
               values_on(grid, undeformed_distance, "undeformed_distance_m"),
               std::nullopt,
-              std::nullopt};
+              std::move(rolling)};
 }
 
 void write_case(const std::string& path, Case problem, const std::optional<PySolution>& solution) {
@@ -547,10 +567,12 @@ void bind_tangential(py::module_& m) {
                ", slip_elements=" + std::to_string(s.slip_elements) + ")";
       });
   m.def("solve_steady_rolling", &solve_steady_rolling, "grid"_a, "material"_a, "normal"_a, py::kw_only(),
-        "friction"_a, "creepage_x"_a = 0.0, "creepage_y"_a = 0.0, "spin_per_m"_a = 0.0, "rolling"_a = "+x",
+        "friction"_a, "creepage_x"_a = 0.0, "creepage_y"_a = 0.0, "spin_per_m"_a = 0.0, "spin_centre_x_m"_a = 0.0,
+        "spin_centre_y_m"_a = 0.0, "rolling"_a = "+x",
         "Steady rolling with Coulomb friction on the normal solution `normal` (a Solution on `grid`), CONTACT's "
-        "conventions: creepages of the rail (body 1) against the wheel, rigid slip (xi - phi y, eta + phi x), "
-        "rolling towards '+x' or '-x' (docs/tangential.md).");
+        "conventions: creepages of the rail (body 1) against the wheel, rigid slip (xi - phi (y - y0), eta + phi "
+        "(x - x0)) about the spin centre (x0, y0) in the grid's coordinates, rolling towards '+x' or '-x' "
+        "(docs/tangential.md).");
 }
 
 void bind_case_files(py::module_& m) {
@@ -564,12 +586,34 @@ void bind_case_files(py::module_& m) {
                number(stored.approach) + ", contact_count=" + std::to_string(stored.contact_count) + ")";
       });
 
+  using Rolling = fastnorm::CaseRolling<double>;
+  py::class_<Rolling>(m, "CaseRolling",
+                      "A case's steady-rolling problem, its tangential line (docs/case-format.md): Coulomb's "
+                      "friction, the creepages of the rail (body 1) against the wheel about the spin centre "
+                      "(grid coordinates, m), and the rolling direction.")
+      .def(py::init(&make_rolling), "friction"_a, py::kw_only(), "creepage_x"_a = 0.0, "creepage_y"_a = 0.0,
+           "spin_per_m"_a = 0.0, "spin_centre_x_m"_a = 0.0, "spin_centre_y_m"_a = 0.0, "rolling"_a = "+x")
+      .def_readonly("friction", &Rolling::friction)
+      .def_property_readonly("creepage_x", [](const Rolling& r) { return r.creepage.longitudinal; })
+      .def_property_readonly("creepage_y", [](const Rolling& r) { return r.creepage.lateral; })
+      .def_property_readonly("spin_per_m", [](const Rolling& r) { return r.creepage.spin; })
+      .def_property_readonly("spin_centre_x_m", [](const Rolling& r) { return r.creepage.spin_centre_x; })
+      .def_property_readonly("spin_centre_y_m", [](const Rolling& r) { return r.creepage.spin_centre_y; })
+      .def_property_readonly("rolling", [](const Rolling& r) {
+        return std::string(r.direction == fastnorm::RollingDirection::positive_x ? "+x" : "-x");
+      })
+      .def("__repr__", [](const Rolling& r) {
+        return "CaseRolling(friction=" + number(r.friction) + ", creepage_x=" + number(r.creepage.longitudinal) +
+               ", creepage_y=" + number(r.creepage.lateral) + ", spin_per_m=" + number(r.creepage.spin) +
+               ", rolling='" + (r.direction == fastnorm::RollingDirection::positive_x ? "+x" : "-x") + "')";
+      });
+
   py::class_<Case>(m, "Case",
                    "A normal-contact problem as a .case file stores it (docs/case-format.md). Without "
                    "normal_force_n it is approach-controlled: h already holds the approach, stated_approach_m "
                    "is for information.")
       .def(py::init(&make_case), "name"_a, "grid"_a, "material"_a, "undeformed_distance_m"_a, py::kw_only(),
-           "normal_force_n"_a = py::none(), "stated_approach_m"_a = 0.0)
+           "normal_force_n"_a = py::none(), "stated_approach_m"_a = 0.0, "rolling"_a = py::none())
       .def_readonly("name", &Case::name)
       .def_readonly("source", &Case::source)
       .def_readonly("grid", &Case::grid)
@@ -584,6 +628,8 @@ void bind_case_files(py::module_& m) {
       .def_property_readonly("undeformed_distance_m",
                              [](const Case& problem) { return map_of<double>(problem.grid, problem.undeformed_distance); },
                              "h (m, + = gap), shape (my, mx)")
+      .def_property_readonly("rolling", [](const Case& problem) { return problem.rolling; },
+                             "the steady-rolling problem of its tangential line (a CaseRolling), or None")
       .def_property_readonly("result", [](const Case& problem) { return problem.result; },
                              "the stored solution's numbers, or None")
       .def_property_readonly("result_pressure_pa",
@@ -597,7 +643,7 @@ void bind_case_files(py::module_& m) {
         return "Case('" + problem.name + "', grid=" + std::to_string(problem.grid.mx()) + "x" +
                std::to_string(problem.grid.my()) +
                (force ? ", normal_force_n=" + number(problem.loading.normal_force) : std::string(", approach control")) +
-               (problem.result ? ", with result" : "") + ")";
+               (problem.rolling ? ", with rolling" : "") + (problem.result ? ", with result" : "") + ")";
       });
 
   m.def("read_case", &fastnorm::read_case_file<double>, "path"_a, "Reads a .case file.");
@@ -672,7 +718,7 @@ void bind_wheelset(py::module_& m) {
       .def_readonly("traction", &PyPatch::traction,
                     "with a velocity: the tractions on the rail in the patch frame (x along e_x, y along t_s), "
                     "their force_x_n = Fx, force_y_n = Fs and spin_moment_nm = Mn about reference_m, the areas "
-                    "(FASTSIM, docs/wheel-rail.md §10); None without")
+                    "(the model's creep_method, docs/wheel-rail.md §10); None without")
       .def_readonly("creepage_x", &PyPatch::creepage_x, "xi of the rail against the wheel at reference_m (0 without velocity)")
       .def_readonly("creepage_y", &PyPatch::creepage_y, "eta, along t_s")
       .def_readonly("spin_per_m", &PyPatch::spin, "phi (rad/m) about the normal")

@@ -70,3 +70,53 @@ def test_cases_print_their_key_figures(peer_cases):
     case = fastnorm.read_case(str(peer_cases / "hertz_sphere_30x30.case"))
     assert repr(case).startswith("Case('") and "grid=30x30" in repr(case)
     assert repr(case.result).startswith("CaseResult(normal_force_n=")
+
+
+def printed_fields(output):
+    """The key=value fields of a tool's line, as numbers where they are."""
+    fields = {}
+    for word in output.split():
+        key, _, value = word.partition("=")
+        try:
+            fields[key] = float(value)
+        except ValueError:
+            fields[key] = value
+    return fields
+
+
+def test_a_cases_tangential_line_is_rolled_as_the_cpp_tool_rolls_it(peer_cases, fastnorm_solve, output_dir):
+    # A case with a tangential line written by the module (all creepages, a spin centre off
+    # the origin, rolling towards -x) reads back unchanged in both, and the module's exact
+    # path gives fastnorm-solve's forces to the digits it prints (six).
+    peer = fastnorm.read_case(str(peer_cases / "hertz_sphere_30x30.case"))
+    rolling = fastnorm.CaseRolling(0.3, creepage_x=1e-3, creepage_y=-5e-4, spin_per_m=0.4, spin_centre_x_m=1e-4,
+                                   spin_centre_y_m=-2e-4, rolling="-x")
+    case = fastnorm.Case(peer.name, peer.grid, peer.material, peer.undeformed_distance_m,
+                         normal_force_n=peer.normal_force_n, stated_approach_m=peer.stated_approach_m, rolling=rolling)
+    path = output_dir / "rolling_by_python.case"
+    fastnorm.write_case(str(path), case)
+    back = fastnorm.read_case(str(path))
+    for name in ["friction", "creepage_x", "creepage_y", "spin_per_m", "spin_centre_x_m", "spin_centre_y_m",
+                 "rolling"]:
+        assert getattr(back.rolling, name) == getattr(rolling, name), name
+
+    run = subprocess.run([fastnorm_solve, "--quiet", str(path)], check=True, capture_output=True, text=True)
+    cpp = printed_fields(run.stdout)
+    python = fastnorm.roll_case(back, fastnorm.solve_case(back))
+    assert python.ok and cpp["tangential"] == "converged"
+    assert python.adhesion_elements > 0 and python.slip_elements > 0  # partial slip
+    assert python.force_x_n == pytest.approx(cpp["fx"], rel=1e-5)
+    assert python.force_y_n == pytest.approx(cpp["fs"], rel=1e-5)
+    assert python.spin_moment_nm == pytest.approx(cpp["mn"], rel=1e-5)
+    assert (python.adhesion_elements, python.slip_elements, python.sweeps) == (cpp["nadh"], cpp["nslip"], cpp["sweeps"])
+    with pytest.raises(ValueError, match="tangential line"):
+        fastnorm.roll_case(peer, fastnorm.solve_case(peer))
+
+
+def test_a_case_rolling_names_bad_input():
+    with pytest.raises(fastnorm.FastnormError, match="friction"):
+        fastnorm.CaseRolling(0.0)
+    with pytest.raises(fastnorm.FastnormError, match="spin_per_m"):
+        fastnorm.CaseRolling(0.3, spin_per_m=float("nan"))
+    with pytest.raises(fastnorm.FastnormError, match="rolling"):
+        fastnorm.CaseRolling(0.3, rolling="x")

@@ -18,6 +18,7 @@ a ValueError whose message names the argument. fastnorm.plot draws pressure maps
 from ._fastnorm import (
     Case,
     CaseResult,
+    CaseRolling,
     Equilibrium,
     FastnormError,
     Grid,
@@ -41,6 +42,7 @@ from ._fastnorm import (
 __all__ = [
     "Case",
     "CaseResult",
+    "CaseRolling",
     "Equilibrium",
     "FastnormError",
     "Grid",
@@ -57,6 +59,7 @@ __all__ = [
     "WheelsetResult",
     "__version__",
     "read_case",
+    "roll_case",
     "solve_case",
     "solve_steady_rolling",
     "write_case",
@@ -71,3 +74,18 @@ def solve_case(case, solver="norm", **options):
     return Solver(solver, case.grid, case.material, **options).solve(
         case.undeformed_distance_m, normal_force_n=case.normal_force_n
     )
+
+
+def roll_case(case, normal):
+    """Steady rolling of a Case's tangential line (case.rolling) on its normal Solution `normal`.
+
+    What fastnorm-solve does with such a case: the exact path, the creepages about the line's
+    spin centre, its rolling direction. Returns the TangentialSolution.
+    """
+    rolling = case.rolling
+    if rolling is None:
+        raise ValueError("case.rolling is None: the case has no tangential line")
+    return solve_steady_rolling(case.grid, case.material, normal, friction=rolling.friction,
+                                creepage_x=rolling.creepage_x, creepage_y=rolling.creepage_y,
+                                spin_per_m=rolling.spin_per_m, spin_centre_x_m=rolling.spin_centre_x_m,
+                                spin_centre_y_m=rolling.spin_centre_y_m, rolling=rolling.rolling)

@@ -1,0 +1,163 @@
+// The C API gives the C++ library's numbers, bit for bit: the wheelset model with
+// velocities (creepages, creep forces, tractions, sums; both creep methods) along a short
+// motion, and steady rolling on one patch. What it guards is the C layer's conversions
+// (frames, signs, units, element order, which wheel is which), not the mechanics.
+#include <algorithm>
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <fastnorm/fastnorm.hpp>
+#include <string>
+#include <vector>
+
+#include "fastnorm_c.h"
+
+namespace wr = fastnorm::wheelrail;
+
+namespace {
+
+#define REQUIRE_C_OK(call)          \
+  do {                              \
+    const int c_status = (call);    \
+    INFO(fastnorm_last_error());    \
+    REQUIRE(c_status == FASTNORM_OK); \
+  } while (false)
+
+void check_equal(const double (&c)[3], const Eigen::Vector3d& cpp) {
+  for (int k = 0; k < 3; ++k) CHECK(c[k] == cpp(k));
+}
+
+/// Every number the C API reports of wheel `w`'s patches at its last evaluate against the
+/// C++ model's result.
+void check_wheel(const fastnorm_wheelset* model, int w, const wr::WheelContact& wheel) {
+  int count = -1;
+  REQUIRE_C_OK(fastnorm_wheelset_patch_count(model, w, &count));
+  REQUIRE(count == static_cast<int>(wheel.patches.size()));
+  for (int k = 0; k < count; ++k) {
+    const wr::PatchContact& cpp = wheel.patches[static_cast<std::size_t>(k)];
+    fastnorm_patch patch{};
+    REQUIRE_C_OK(fastnorm_wheelset_patch(model, w, k, &patch));
+    INFO("wheel " << w << ", patch " << k);
+    CHECK(patch.normal_force == cpp.normal_force);
+    std::vector<double> pressure(static_cast<std::size_t>(cpp.patch.grid.size()));
+    REQUIRE_C_OK(fastnorm_wheelset_patch_pressure(model, w, k, pressure.data()));
+    CHECK(Eigen::Map<const Eigen::VectorXd>(pressure.data(), cpp.patch.grid.size()) == cpp.solution.pressure);
+    check_equal(patch.force, cpp.force);
+    check_equal(patch.moment, cpp.moment);
+    check_equal(patch.creep_force, cpp.creep_force);
+    CHECK(patch.stiffness == cpp.stiffness);
+    CHECK(patch.creepage.longitudinal == cpp.creepage.longitudinal);
+    CHECK(patch.creepage.lateral == cpp.creepage.lateral);
+    CHECK(patch.creepage.spin == cpp.creepage.spin);
+    CHECK(patch.creep.status == FASTNORM_CONVERGED);
+    CHECK(cpp.traction.ok());
+    CHECK(patch.creep.force_x == cpp.traction.force_x);
+    CHECK(patch.creep.force_y == cpp.traction.force_y);
+    CHECK(patch.creep.spin_moment == cpp.traction.spin_moment);
+    CHECK(patch.creep.frictional_power_per_speed == cpp.traction.frictional_power_per_speed);
+    CHECK(patch.creep.adhesion_elements == cpp.traction.adhesion_elements);
+    CHECK(patch.creep.slip_elements == cpp.traction.slip_elements);
+    const auto elements = static_cast<std::size_t>(patch.grid.mx) * static_cast<std::size_t>(patch.grid.my);
+    REQUIRE(static_cast<Eigen::Index>(elements) == cpp.patch.grid.size());
+    std::vector<double> traction_x(elements), traction_s(elements);
+    REQUIRE_C_OK(fastnorm_wheelset_patch_traction(model, w, k, traction_x.data(), traction_s.data()));
+    CHECK(Eigen::Map<const Eigen::VectorXd>(traction_x.data(), cpp.patch.grid.size()) == cpp.traction.traction_x);
+    CHECK(Eigen::Map<const Eigen::VectorXd>(traction_s.data(), cpp.patch.grid.size()) == cpp.traction.traction_y);
+  }
+}
+
+}  // namespace
+
+TEST_CASE("The C API's wheelset model gives the C++ model's creep forces bit for bit", "[cli][c_api][creep]") {
+  for (const int method : {FASTNORM_STRIP_THEORY, FASTNORM_FASTSIM}) {
+    DYNAMIC_SECTION((method == FASTNORM_FASTSIM ? "FASTSIM" : "strip theory")) {
+      fastnorm_wheelset_options c_options;
+      fastnorm_wheelset_options_default(&c_options);
+      c_options.solver = "elliptic";
+      c_options.elements = 30;
+      c_options.friction = 0.3;
+      c_options.creep_method = method;
+      c_options.cant = 0.05;  // 1:20, where S1002 meets UIC60 at two points from y = 5.5 mm
+      fastnorm_wheelset* c_model = nullptr;
+      REQUIRE_C_OK(fastnorm_wheelset_create(&c_options, &c_model));
+
+      // The same model in C++, as fastnorm_c.h documents its defaults: S1002 on UIC60, steel.
+      wr::WheelsetContactOptions options;
+      options.solver = fastnorm::SolverSpec<double>::parse("elliptic");
+      options.grid.elements = 30;
+      options.creep.friction = 0.3;
+      options.creep.method = method == FASTNORM_FASTSIM ? wr::CreepMethod::fastsim : wr::CreepMethod::strip_theory;
+      wr::WheelsetOnTrack setup;
+      setup.cant = 0.05;
+      wr::WheelsetContact<> model(setup.track(), setup.wheelset(), options);
+
+      // A short lateral run from the centre to two-point contact on the right wheel, yawed,
+      // moving at 30 m/s with lateral and yaw rates.
+      std::size_t most_patches = 0;
+      for (const double y : {0.0, 3e-3, 5e-3, 6e-3, 6.5e-3, 7e-3}) {
+        INFO("y = " << y);
+        wr::WheelsetPose pose = wr::rigid_contact_pose(model.track(), model.wheelset(), y, 1e-3);
+        pose.z += 0.05e-3;
+        wr::WheelsetVelocity velocity;
+        velocity.forward = 30;
+        velocity.lateral = 0.05;
+        velocity.yaw_rate = 0.01;
+        velocity.pitch_rate = -30 / 0.45;
+        const auto& cpp = model.evaluate(pose, velocity);
+        REQUIRE(cpp.ok());
+
+        const fastnorm_pose c_pose = {pose.y, pose.z, pose.roll, pose.yaw};
+        const fastnorm_velocity c_velocity = {velocity.forward,   velocity.lateral,  velocity.vertical,
+                                              velocity.roll_rate, velocity.yaw_rate, velocity.pitch_rate};
+        double force[3], moment[3];
+        REQUIRE_C_OK(fastnorm_wheelset_evaluate_moving(c_model, &c_pose, &c_velocity, force, moment));
+        check_equal(force, cpp.force);
+        check_equal(moment, cpp.moment);
+        check_wheel(c_model, 0, cpp.wheels[0]);
+        check_wheel(c_model, 1, cpp.wheels[1]);
+        for (const auto& wheel : cpp.wheels) most_patches = std::max(most_patches, wheel.patches.size());
+      }
+      CHECK(most_patches == 2);
+      fastnorm_wheelset_destroy(c_model);
+    }
+  }
+}
+
+TEST_CASE("The C API's steady rolling is the C++ solver's bit for bit", "[cli][c_api][tangential]") {
+  // A wheel-rail patch of the model (elliptic pressures), rolled towards -x with all three
+  // creepages about a spin centre off the grid's origin: the exact path through both.
+  wr::WheelsetContactOptions options;
+  options.solver = fastnorm::SolverSpec<double>::parse("elliptic");
+  options.grid.elements = 24;
+  const wr::WheelsetOnTrack setup;
+  wr::WheelsetContact<> model(setup.track(), setup.wheelset(), options);
+  wr::WheelsetPose pose = wr::rigid_contact_pose(model.track(), model.wheelset(), 3e-3, 0);
+  pose.z += 0.1e-3;
+  const auto& patch = model.evaluate(pose).wheels[1].patches.at(0);
+  const auto& grid = patch.patch.grid;
+  const fastnorm::Creepage<double> creepage{1e-3, -5e-4, 0.4, 1e-3, -2e-4};
+  const auto material = options.material;
+  const auto cpp = fastnorm::solve_steady_rolling(grid, material, patch.solution, 0.3, creepage,
+                                                  fastnorm::RollingDirection::negative_x);
+  REQUIRE(cpp.ok());
+
+  const fastnorm_grid c_grid = {static_cast<int>(grid.mx()), static_cast<int>(grid.my()), grid.dx(), grid.dy(),
+                                grid.x0(), grid.y0()};
+  const fastnorm_material c_material = {material.young_modulus(1), material.poisson_ratio(1),
+                                        material.young_modulus(2), material.poisson_ratio(2)};
+  const fastnorm_creepage c_creepage = {creepage.longitudinal, creepage.lateral, creepage.spin,
+                                        creepage.spin_centre_x, creepage.spin_centre_y};
+  std::vector<double> traction_x(static_cast<std::size_t>(grid.size())), traction_y(traction_x.size());
+  fastnorm_tangential_result result{};
+  REQUIRE_C_OK(fastnorm_steady_rolling(&c_grid, &c_material, patch.solution.pressure.data(), 0.3, &c_creepage, -1,
+                                       traction_x.data(), traction_y.data(), &result));
+  CHECK(result.status == FASTNORM_CONVERGED);
+  CHECK(result.force_x == cpp.force_x);
+  CHECK(result.force_y == cpp.force_y);
+  CHECK(result.spin_moment == cpp.spin_moment);
+  CHECK(result.frictional_power_per_speed == cpp.frictional_power_per_speed);
+  CHECK(result.adhesion_elements == cpp.adhesion_elements);
+  CHECK(result.slip_elements == cpp.slip_elements);
+  CHECK(result.sweeps == cpp.sweeps);
+  CHECK(Eigen::Map<const Eigen::VectorXd>(traction_x.data(), grid.size()) == cpp.traction_x);
+  CHECK(Eigen::Map<const Eigen::VectorXd>(traction_y.data(), grid.size()) == cpp.traction_y);
+}
