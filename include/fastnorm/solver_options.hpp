@@ -26,6 +26,10 @@ struct ActiveSetOptions {
   /// interpenetrating elements; the default 0.5 is the Hertz contact area, which needs
   /// fewer and smaller factorisations (docs/norm.md §2). NORM's answer does not depend on it.
   Scalar start_depth_fraction = Scalar(0.5);
+  /// The join check skips a candidate whose gap a bound keeps above zero (docs/method.md
+  /// §3, "Pruning the join check"). The answer is the same bit for bit either way; false
+  /// evaluates every candidate at every check, for measurement.
+  bool bound_join_check = true;
 
   /// @throws fastnorm::invalid_argument naming the offending field
   void validate() const {

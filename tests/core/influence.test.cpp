@@ -72,6 +72,29 @@ TEST_CASE("Kernel is even in x and y and the table symmetric", "[influence]") {
   }
 }
 
+TEST_CASE("Along every line parallel to x the table falls off from di = 0", "[influence]") {
+  // The join check's bound (detail/active_set_loop.hpp) takes max_i C(i, dj) = C(0, dj):
+  // the displacement of a uniformly loaded rectangle decreases with |x| on every line y =
+  // const, on square, long and wide elements, near and far.
+  struct Shape {
+    double dx, dy;
+  };
+  for (const Shape shape : {Shape{1e-3, 1e-3}, Shape{0.2e-3, 1.5e-3}, Shape{2e-3, 0.1e-3}}) {
+    const fastnorm::Grid<> grid(90, 70, shape.dx, shape.dy);
+    const fastnorm::InfluenceTable<> table(grid, fastnorm::Material<>(2.1e11, 0.3));
+    for (Eigen::Index dj = 0; dj < grid.my(); ++dj) {
+      INFO("dx " << shape.dx << ", dy " << shape.dy << ", dj " << dj);
+      bool falls = true, even = true;
+      for (Eigen::Index di = 1; di < grid.mx(); ++di) {
+        falls = falls && table.at_offset(di, dj) <= table.at_offset(di - 1, dj);
+        even = even && table.at_offset(-di, dj) == table.at_offset(di, dj);
+      }
+      CHECK(falls);
+      CHECK(even);
+    }
+  }
+}
+
 TEST_CASE("Far field tends to dx·dy / (π E* r)", "[influence]") {
   const double dx = 1e-3, dy = 2e-3, e_star = 1e11, pi_d = 3.14159265358979323846;
   double previous_error = 1;

@@ -6,6 +6,7 @@
 #include <fastnorm/reduced_solver.hpp>
 #include <limits>
 
+#include "support/random_gaps.hpp"
 #include "support/surfaces.hpp"
 
 using Catch::Matchers::Contains;
@@ -147,4 +148,53 @@ TEST_CASE("Solvers are found by name", "[reduced][any]") {
   const Eigen::VectorXd h = fastnorm::test::two_bumps(grid, 3e-5);
   CHECK_THROWS_WITH(fastnorm::AnySolver<>("elliptic", grid, steel).solve(h.head(3), fastnorm::Loading<>::approach()),
                     Contains("undeformed_distance"));
+}
+
+TEST_CASE("The join check's bound skips candidates, never changes an answer", "[reduced][norm]") {
+  // docs/method.md §3, "Pruning the join check": with the bound and without it the loop must
+  // take the same steps to the same pressures, bit for bit: on wavy random gaps (many joins
+  // and drops per solve), both controls, cold and along a warm sequence.
+  const auto solve_both = [](auto make_solver, const std::string& name) {
+    for (const std::uint32_t seed : {3u, 17u, 29u}) {
+      const auto gap = fastnorm::test::random_gap(seed, 48);
+      auto bounded = make_solver(gap.grid, true);
+      auto plain = make_solver(gap.grid, false);
+      for (int step = 0; step < 4; ++step) {
+        INFO(name << ", seed " << seed << ", step " << step);
+        const Eigen::VectorXd h = gap.unloaded.array() - gap.approach * (1 + 0.02 * step);
+        const auto by_approach = fastnorm::Loading<>::approach();
+        const auto a = bounded.solve_next(h, by_approach), b = plain.solve_next(h, by_approach);
+        REQUIRE(a.ok());
+        CHECK(a.iterations > 1);
+        CHECK(a.status == b.status);
+        CHECK(a.iterations == b.iterations);
+        CHECK(a.residual == b.residual);
+        CHECK(a.pressure == b.pressure);
+        const auto by_force = fastnorm::Loading<>::force(1.1 * a.normal_force);
+        const auto c = bounded.solve(gap.unloaded, by_force), d = plain.solve(gap.unloaded, by_force);
+        CHECK(c.iterations == d.iterations);
+        CHECK(c.approach == d.approach);
+        CHECK(c.pressure == d.pressure);
+      }
+    }
+  };
+  solve_both(
+      [](const fastnorm::Grid<>& grid, bool bound) {
+        fastnorm::ActiveSetOptions<> options;
+        options.bound_join_check = bound;
+        return fastnorm::NormSolver<>(grid, steel, options);
+      },
+      "norm");
+  const auto reduced = [](auto basis, const std::string& name, auto& solve) {
+    solve(
+        [basis](const fastnorm::Grid<>& grid, bool bound) {
+          fastnorm::ReducedOptions<> options;
+          options.active_set.bound_join_check = bound;
+          return fastnorm::ReducedSolver<decltype(basis)>(grid, steel, basis, options);
+        },
+        name);
+  };
+  reduced(fastnorm::EllipticBasis(), "elliptic", solve_both);
+  reduced(fastnorm::PolynomialBasis(4), "polynomial:4", solve_both);
+  reduced(fastnorm::PolynomialEdgeBasis(fastnorm::PolynomialBasis(4), 1), "polynomial-edge:4:1", solve_both);
 }

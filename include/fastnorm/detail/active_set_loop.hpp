@@ -36,6 +36,13 @@ struct ActiveSetWorkspace {
   std::vector<Scalar> sorted_distance;    // of the force-control starting guess
   std::vector<char> is_active;            // per element of the grid
   Solution<Scalar> spare_solution;        // storage for the next answer (workspace.recycle)
+  // The join check's memory within one solve (ActiveSetLoop::find_joining): per grid element
+  // a lower bound of its displacement u and the check that last bounded it, the pressures
+  // of the last check (on `checked_set`), per strip their decrease since and its bound.
+  std::vector<Scalar> displacement_floor, checked_pressure, strip_decrease, strip_drop;
+  std::vector<int> bounded_at;
+  std::vector<Index> checked_set;
+  int checks = 0;  // of this solve
 
   /// True if `set` came up before in this solve; records it otherwise.
   bool seen_before(const std::vector<Index>& set) {
@@ -85,6 +92,9 @@ class ActiveSetLoop {
     work_.visited_ends.clear();
     work_.admissible_set.clear();  // last set with all pressures positive
     work_.is_active.assign(static_cast<std::size_t>(n_all), 0);
+    work_.bounded_at.assign(static_cast<std::size_t>(n_all), 0);
+    work_.displacement_floor.resize(static_cast<std::size_t>(n_all));
+    work_.checks = 0;
     while (solution_.iterations < options_.max_iterations) {
       if (work_.seen_before(work_.active)) {
         if (work_.admissible_set.empty()) {  // no set ever had positive pressures: round-off rules
@@ -124,7 +134,8 @@ class ActiveSetLoop {
   /// Step 1 (docs/norm.md §2): the first approach and set; false if nothing touches.
   bool choose_start(const std::vector<Index>& start_set) {
     deepest_ = h_.minCoeff();
-    join_below_ = -options_.gap_tolerance * h_.cwiseAbs().maxCoeff();
+    max_abs_h_ = h_.cwiseAbs().maxCoeff();
+    join_below_ = -options_.gap_tolerance * max_abs_h_;
     if (force_control()) {
       approach_ = approach_guess(h_, influence_.grid().element_area(), influence_.combined_modulus(),
                                  loading_.normal_force, work_.sorted_distance);
@@ -175,27 +186,87 @@ class ActiveSetLoop {
   }
 
   /// Step 4: elements outside the set with negative deformed gap, into `joining`. C p ≥ 0,
-  /// so only elements with h − δ < 0 can have g < 0: only those are checked. Records the
+  /// so only elements with h − δ < 0 can have g < 0: only those are candidates. Records the
   /// deepest interpenetration found as the residual.
+  ///
+  /// A candidate whose gap is bounded away from zero is not evaluated (docs/method.md §3,
+  /// "Pruning the join check"): between two checks of a solve u_t changes by Σ_k C_tk Δp_k, which is
+  /// at least −Σ_j' max_i C(i, j_t − j') D_j', D_j' the decrease of the pressure summed over
+  /// strip j'. So u_t is at least its value at the last check minus that per-strip bound,
+  /// accumulated over the checks since it was evaluated; where the gap that lower bound gives
+  /// stays above a margin of round-off, the candidate can neither join nor deepen the
+  /// residual. The evaluated candidates get the same displacements as without pruning (each
+  /// sums its sources in the same order), so the loop takes the same steps, bit for bit.
   void find_joining() {
+    const auto& grid = influence_.grid();
+    const auto pressure = work_.columns.view().col(0);
+    const bool bounded = options_.bound_join_check && work_.checks > 0;
+    ++work_.checks;
+    if (bounded) bound_displacement_change(pressure);
+    // Round-off of a sum of displacements stays far below this (relative 1000 ε).
+    const Scalar margin = 1000 * std::numeric_limits<Scalar>::epsilon() * max_abs_h_;
     for (Index k : work_.active) work_.is_active[static_cast<std::size_t>(k)] = 1;
     work_.candidates.clear();
     for (Index k = 0; k < h_.size(); ++k) {
-      if (!work_.is_active[static_cast<std::size_t>(k)] && h_(k) - approach_ < join_below_) {
-        work_.candidates.push_back(k);
+      const auto e = static_cast<std::size_t>(k);
+      if (work_.is_active[e] || !(h_(k) - approach_ < join_below_)) continue;
+      if (bounded && work_.bounded_at[e] == work_.checks - 1) {
+        auto& floor = work_.displacement_floor[e];
+        floor -= work_.strip_drop[static_cast<std::size_t>(grid.j_of(k))];
+        if (h_(k) - approach_ + floor >= margin) {
+          work_.bounded_at[e] = work_.checks;  // still a bound; not evaluated
+          continue;
+        }
       }
+      work_.candidates.push_back(k);
     }
     for (Index k : work_.active) work_.is_active[static_cast<std::size_t>(k)] = 0;
     auto displacement = work_.displacement.resize(static_cast<Index>(work_.candidates.size()), 1).col(0);
-    set_solver_.displacement(work_.candidates, work_.active, work_.columns.view().col(0), displacement);
+    set_solver_.displacement(work_.candidates, work_.active, pressure, displacement);
     work_.joining.clear();
     Scalar deepest_gap = 0;
     for (std::size_t t = 0; t < work_.candidates.size(); ++t) {
-      const Scalar gap = h_(work_.candidates[t]) - approach_ + displacement(static_cast<Index>(t));
+      const Index k = work_.candidates[t];
+      const Scalar gap = h_(k) - approach_ + displacement(static_cast<Index>(t));
       deepest_gap = std::min(deepest_gap, gap);
-      if (gap < join_below_) work_.joining.push_back(work_.candidates[t]);
+      if (gap < join_below_) work_.joining.push_back(k);
+      work_.displacement_floor[static_cast<std::size_t>(k)] = displacement(static_cast<Index>(t));
+      work_.bounded_at[static_cast<std::size_t>(k)] = work_.checks;
     }
     residual_ = std::max(Scalar(0), -deepest_gap) / (approach_ - deepest_);
+    // What the next check bounds the change from.
+    work_.checked_set = work_.active;
+    work_.checked_pressure.assign(pressure.data(), pressure.data() + pressure.size());
+  }
+
+  /// strip_drop[j] ≥ −Σ_k C(·, j − j_k) Δp_k over every element of strip j: the largest
+  /// fall of u on strip j since the last check, from the pressures' decreases per strip
+  /// (only elements of the last checked set can have lost pressure: p ≥ 0 elsewhere then).
+  void bound_displacement_change(const Eigen::Ref<const Vector>& pressure) {
+    const auto& grid = influence_.grid();
+    const auto my = static_cast<std::size_t>(grid.my());
+    auto& decrease = work_.strip_decrease;
+    decrease.assign(my, Scalar(0));
+    // The current pressure of a last-checked element: the sets are sorted, so one merge.
+    std::size_t r = 0;
+    const auto& now = work_.active;
+    for (std::size_t c = 0; c < work_.checked_set.size(); ++c) {
+      const Index k = work_.checked_set[c];
+      while (r < now.size() && now[r] < k) ++r;
+      const Scalar current = r < now.size() && now[r] == k ? pressure(static_cast<Index>(r)) : Scalar(0);
+      const Scalar fall = work_.checked_pressure[c] - current;
+      if (fall > 0) decrease[static_cast<std::size_t>(grid.j_of(k))] += fall;
+    }
+    // max_i C(i, dj) = C(0, dj): the displacement of a uniformly loaded rectangle falls off
+    // along x on every line parallel to it (tests/core/influence.test.cpp checks the table).
+    work_.strip_drop.assign(my, Scalar(0));
+    for (std::size_t source = 0; source < my; ++source) {
+      if (decrease[source] == 0) continue;
+      for (std::size_t j = 0; j < my; ++j) {
+        const auto dj = static_cast<Index>(j) - static_cast<Index>(source);
+        work_.strip_drop[j] += influence_.at_offset(0, dj) * decrease[source];
+      }
+    }
   }
 
   void join() {
@@ -235,7 +306,7 @@ class ActiveSetLoop {
   SetSolver& set_solver_;
   ActiveSetWorkspace<Scalar>& work_;
   Solution<Scalar> solution_;
-  Scalar deepest_ = 0, join_below_ = 0, approach_ = 0, admissible_approach_ = 0, residual_ = 0;
+  Scalar deepest_ = 0, max_abs_h_ = 0, join_below_ = 0, approach_ = 0, admissible_approach_ = 0, residual_ = 0;
 };
 
 /// Checks the problem and runs the loop (see ActiveSetLoop) from `start_set`, or cold if it
