@@ -13,8 +13,8 @@
 // μ = 0.3, docs/wheel-rail.md §10; "+fastsim" after the name: FASTSIM), timed as
 // tangential_us; total_us is search + h + solve, the normal contact, as before.
 //
-// A solver runs with the model's defaults (WheelsetContactOptions::starts_warm: NORM, CG and
-// the edge-enriched polynomial basis warm, the other reduced bases cold); "+warm" or "+cold"
+// A solver runs with the model's defaults (WheelsetContactOptions::starts_warm: every solver
+// warm but the edge-enriched elliptic basis); "+warm" or "+cold"
 // (e.g. elliptic+warm, cg+cold) starts every solve from the patch's previous contact set (CG:
 // pressures), or makes it start cold. When a reduced solver runs both ways, one more line
 // compares them step by step on the checked steps (the same grids and h):

@@ -85,10 +85,12 @@ TEST_CASE("Along a trajectory every patch is full NORM's on the exact h", "[whee
   // h exact at every element, and interpolated along rows (the default): then a patch's Fn
   // may differ from NORM's on the exact h by what h's error bound ε moves it, K·ε.
   for (const double tolerance : {0.0, wr::DistanceAccuracy{}.tolerance})
-  for (const char* solver : {"norm", "cg", "elliptic"}) {
+  for (const char* solver : {"norm", "cg", "elliptic", "elliptic+warm"}) {
     INFO(solver << ", h within " << tolerance << " m");
-    auto options = coarse(solver);
+    const bool warm_reduced = std::string(solver) == "elliptic+warm";
+    auto options = coarse(warm_reduced ? "elliptic" : solver);
     options.distance.tolerance = tolerance;
+    if (options.solver.is_reduced()) options.reduced_warm_start = warm_reduced;
     wr::WheelsetContact<> contact(track, wheelset, options);
     for (int step = 0; step < 12; ++step) {
       // 0.2 mm lateral steps, z lowered by 0.1 mm and oscillating, a little yaw.
@@ -102,10 +104,14 @@ TEST_CASE("Along a trajectory every patch is full NORM's on the exact h", "[whee
         for (const auto& patch : wheel.patches) {
           if (step > 0) CHECK(patch.history == wr::PatchHistory::continued);
           const auto norm = norm_on_exact_h(track, wheelset, pose, patch);
-          if (std::string(solver) == "elliptic") {
-            // The reduced solver follows its cold path: the cold solve's answer on this h,
-            // whose error against NORM at 30 elements is up to 8.6e-4 here (5e-4 is the
-            // bound at 60 elements, docs/method.md).
+          if (warm_reduced) {
+            // Warm (the default), from the patch's last contact set: within the basis's
+            // bound of NORM as the cold path below.
+            CHECK(std::abs(patch.normal_force / norm.normal_force - 1) <= 1e-3);
+          } else if (std::string(solver) == "elliptic") {
+            // Started cold, the reduced solver follows its cold path: the cold solve's
+            // answer on this h, whose error against NORM at 30 elements is up to 8.6e-4
+            // here (5e-4 is the bound at 60 elements, docs/method.md).
             const auto cold = fastnorm::AnySolver<>(solver, patch.patch.grid, fastnorm::Material<double>(2.1e11, 0.3))
                                   .solve(patch.patch.undeformed_distance, fastnorm::Loading<double>::approach());
             CHECK(patch.normal_force == Approx(cold.normal_force).epsilon(1e-12));
@@ -161,10 +167,12 @@ TEST_CASE("Reduced warm starts begin at the patch's last contact set", "[wheelra
   const wr::Wheelset wheelset;
   auto pose = wr::rigid_contact_pose(track, wheelset, 3e-3, 0);
   pose.z += 0.1e-3;
-  SECTION("defaults: warm for the edge-enriched polynomial basis only, NORM and CG warm") {
-    for (const char* name : {"norm", "cg", "polynomial-edge:4:1"}) CHECK(coarse(name).starts_warm());
-    for (const char* name : {"elliptic", "polynomial:4", "elliptic-edge:1"}) CHECK(!coarse(name).starts_warm());
-    auto options = coarse("elliptic");
+  SECTION("defaults: warm but for the edge-enriched elliptic basis, NORM and CG warm") {
+    for (const char* name : {"norm", "cg", "elliptic", "polynomial:4", "polynomial-edge:4:1"}) {
+      CHECK(coarse(name).starts_warm());
+    }
+    CHECK(!coarse("elliptic-edge:1").starts_warm());
+    auto options = coarse("elliptic-edge:1");
     options.reduced_warm_start = true;
     CHECK(options.starts_warm());
     options = coarse("polynomial-edge:4:1");
