@@ -3,7 +3,8 @@
  * of the peak, the same contact count); a .case written and read back is unchanged; the
  * sequence call gives the cold answer; bad input returns FASTNORM_ERROR_ARGUMENT with a
  * message naming the argument; the wheelset model's equilibrium carries its load; steady
- * rolling gives CONTACT's creep forces on its large-spin Hertz example.
+ * rolling gives CONTACT's creep forces on its large-spin Hertz example; a case's tangential
+ * line is read.
  * Usage: fastnorm_c_api_test PEER_CASE_FILE SCRATCH_DIR */
 #include <math.h>
 #include <stdio.h>
@@ -328,6 +329,37 @@ static void wheelset_creep_forces(void) {
 /* CONTACT's large-spin Hertz example (docs/tangential.md §5): NORM in force control, then
  * steady rolling; CONTACT's exact answer is Fs = -14940 N, Mz = -48.21 N m, 356 elements in
  * adhesion and 920 in slip. */
+/* A case's tangential line read through the API, as the case file states it; a case
+ * without one (the round trip's) says so. */
+static void case_rolling_is_read(const char* scratch) {
+  char path[4096];
+  snprintf(path, sizeof path, "%s/c_api_rolling.case", scratch);
+  FILE* out = fopen(path, "w");
+  EXPECT(out != NULL);
+  if (!out) return;
+  fprintf(out,
+          "fastnorm-case 1\nname rolling\nsource c_api_test\n"
+          "grid mx 2 my 2 dx 1e-3 dy 1e-3 x0 0 y0 0\nmaterial E 2.1e11 nu 0.3\ncontrol approach 1e-6\n"
+          "tangential friction 0.3 xi 1e-3 eta -5e-4 phi 0.4 xc 1e-4 yc -2e-4 rolling -x\n"
+          "h\n-1e-6 -1e-6\n-1e-6 -1e-6\n");
+  fclose(out);
+  fastnorm_case* problem = NULL;
+  REQUIRE_OK(fastnorm_case_read(path, &problem));
+  double friction = 0;
+  fastnorm_creepage creepage;
+  int rolling = 0;
+  REQUIRE_OK(fastnorm_case_rolling(problem, &friction, &creepage, &rolling));
+  EXPECT(friction == 0.3 && rolling == -1);
+  EXPECT(creepage.longitudinal == 1e-3 && creepage.lateral == -5e-4 && creepage.spin == 0.4);
+  EXPECT(creepage.spin_centre_x == 1e-4 && creepage.spin_centre_y == -2e-4);
+  fastnorm_case_destroy(problem);
+  snprintf(path, sizeof path, "%s/c_api_roundtrip.case", scratch);
+  REQUIRE_OK(fastnorm_case_read(path, &problem));
+  expect_error(fastnorm_case_rolling(problem, &friction, &creepage, &rolling), "no tangential line");
+  expect_error(fastnorm_case_rolling(problem, NULL, &creepage, &rolling), "friction");
+  fastnorm_case_destroy(problem);
+}
+
 static void steady_rolling_meets_contact(void) {
   const fastnorm_grid grid = {44, 44, 0.4e-3, 0.2e-3, -43 * 0.4e-3 / 2, -43 * 0.2e-3 / 2};
   const fastnorm_material material = {2 * 82e9 * 1.28, 0.28, 2 * 82e9 * 1.28, 0.28};
@@ -385,6 +417,7 @@ int main(int argc, char** argv) {
   wheelset_equilibrium_and_time_step();
   wheelset_creep_forces();
   steady_rolling_meets_contact();
+  case_rolling_is_read(argv[2]);
   if (failures) fprintf(stderr, "%d checks failed\n", failures);
   return failures ? 1 : 0;
 }

@@ -315,6 +315,21 @@ int fastnorm_case_undeformed_distance(const fastnorm_case* problem, double* h) {
   });
 }
 
+int fastnorm_case_rolling(const fastnorm_case* problem, double* friction, fastnorm_creepage* creepage, int* rolling) {
+  return guarded("fastnorm_case_rolling", [&] {
+    require_pointer(problem, "problem");
+    require_pointer(friction, "friction");
+    require_pointer(creepage, "creepage");
+    require_pointer(rolling, "rolling");
+    FASTNORM_CHECK(problem->problem.rolling.has_value(), "the case has no tangential line");
+    const auto& stored = *problem->problem.rolling;
+    *friction = stored.friction;
+    *creepage = {stored.creepage.longitudinal, stored.creepage.lateral, stored.creepage.spin,
+                 stored.creepage.spin_centre_x, stored.creepage.spin_centre_y};
+    *rolling = stored.direction == fastnorm::RollingDirection::positive_x ? 1 : -1;
+  });
+}
+
 int fastnorm_case_result(const fastnorm_case* problem, double* pressure, fastnorm_result* result) {
   return guarded("fastnorm_case_result", [&] {
     require_pointer(problem, "problem");

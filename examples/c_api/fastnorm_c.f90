@@ -187,6 +187,13 @@ module fastnorm_c
       real(c_double), intent(out) :: pressure(*)
       type(fastnorm_result), intent(out) :: result
     end function
+    integer(c_int) function fastnorm_case_rolling(problem, friction, creepage, rolling) bind(c)
+      import :: c_int, c_ptr, c_double, fastnorm_creepage
+      type(c_ptr), value :: problem
+      real(c_double), intent(out) :: friction
+      type(fastnorm_creepage), intent(out) :: creepage
+      integer(c_int), intent(out) :: rolling
+    end function
     integer(c_int) function fastnorm_case_write(path, name, grid, material, force_control, control_value, h, &
                                                 pressure, result) bind(c)
       import :: c_int, c_char, c_ptr, c_double, fastnorm_grid, fastnorm_material

@@ -148,6 +148,11 @@ FASTNORM_C_API int fastnorm_case_undeformed_distance(const fastnorm_case* proble
  * mx*my values (Pa), written; result's normal_force, approach, contact_count and
  * iterations filled, status FASTNORM_NOT_SOLVED (a file does not store it). */
 FASTNORM_C_API int fastnorm_case_result(const fastnorm_case* problem, double* pressure, fastnorm_result* result);
+/* The case's steady-rolling problem, its tangential line (docs/case-format.md), if it has
+ * one (else FASTNORM_ERROR_ARGUMENT): friction, the creepages about the spin centre, and
+ * rolling +1 (towards +x) or -1; what fastnorm_steady_rolling takes. */
+FASTNORM_C_API int fastnorm_case_rolling(const fastnorm_case* problem, double* friction, fastnorm_creepage* creepage,
+                                         int* rolling);
 /* Writes a case; pressure and result may both be NULL (no solution part) or both given. */
 FASTNORM_C_API int fastnorm_case_write(const char* path, const char* name, const fastnorm_grid* grid,
                                        const fastnorm_material* material, int force_control, double control_value,

@@ -190,13 +190,14 @@ class ActiveSetLoop {
   /// deepest interpenetration found as the residual.
   ///
   /// A candidate whose gap is bounded away from zero is not evaluated (docs/method.md §3,
-  /// "Pruning the join check"): between two checks of a solve u_t changes by Σ_k C_tk Δp_k, which is
-  /// at least −Σ_j' max_i C(i, j_t − j') D_j', D_j' the decrease of the pressure summed over
-  /// strip j'. So u_t is at least its value at the last check minus that per-strip bound,
-  /// accumulated over the checks since it was evaluated; where the gap that lower bound gives
-  /// stays above a margin of round-off, the candidate can neither join nor deepen the
-  /// residual. The evaluated candidates get the same displacements as without pruning (each
-  /// sums its sources in the same order), so the loop takes the same steps, bit for bit.
+  /// "Pruning the join check"): between two checks of a solve u_t changes by
+  /// Σ_k C_tk Δp_k ≥ −Σ_j' max_i C(i, j_t − j') D_j', D_j' the decrease of the pressure
+  /// summed over strip j'. So u_t is at least its value at the last check minus that
+  /// per-strip bound, accumulated over the checks since it was evaluated; where the gap that
+  /// lower bound gives stays above a margin of round-off, the candidate can neither join nor
+  /// deepen the residual. The evaluated candidates get the same displacements as without
+  /// pruning (each sums its sources in the same order), so the loop takes the same steps,
+  /// bit for bit.
   void find_joining() {
     const auto& grid = influence_.grid();
     const auto pressure = work_.columns.view().col(0);
