@@ -113,7 +113,8 @@ class CgSolver : public detail::SolverBase<CgSolver<Scalar>, CgWorkspace<Scalar>
       solution.status = Status::no_contact;
       solution.message = "no element has a negative undeformed distance";
     } else {
-      Iteration iteration{*influence_, options_, undeformed_distance, loading, workspace};
+      const Options options = workspace.start_.limited(options_);
+      Iteration iteration{*influence_, options, undeformed_distance, loading, workspace};
       iteration.start();
       iteration.run(solution);
     }

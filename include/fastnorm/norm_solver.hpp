@@ -107,7 +107,8 @@ class NormSolver : public detail::SolverBase<NormSolver<Scalar>, NormWorkspace<S
       workspace.factorisation_.solver = id_;
     }
     DenseSetSolver set_solver{*influence_, workspace.factorisation_};
-    Solution<Scalar> solution = detail::solve_active_set(*influence_, undeformed_distance, loading, options_,
+    const Options options = workspace.start_.limited(options_);
+    Solution<Scalar> solution = detail::solve_active_set(*influence_, undeformed_distance, loading, options,
                                                          set_solver, workspace.loop_, workspace.start_.contact_set());
     workspace.start_.remember_set(solution);
     return solution;

@@ -103,8 +103,9 @@ class ReducedSolver : public detail::SolverBase<ReducedSolver<Basis, Scalar>, Re
     }
     workspace.memory_.next_problem();
     detail::GalerkinSetSolver<Basis, Scalar> set_solver(*influence_, basis_, *tables_, workspace.memory_);
-    return detail::solve_active_set(*influence_, undeformed_distance, loading, options_.active_set, set_solver,
-                                    workspace.loop_, workspace.start_.contact_set());
+    return detail::solve_active_set(*influence_, undeformed_distance, loading,
+                                    workspace.start_.limited(options_.active_set), set_solver, workspace.loop_,
+                                    workspace.start_.contact_set());
   }
 
   /// The normal stiffness dFn/dδ (N/m) of the reduced problem at the contact set of

@@ -3,6 +3,7 @@
 /// Where the next solve of a workspace starts (docs/architecture.md §2).
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <string>
 #include <vector>
 
@@ -40,6 +41,22 @@ class WarmStart {
   /// Pressures (Pa, one per element) the last solve ended with, if its solver keeps them.
   bool has_pressure() const { return has_pressure_; }
   const Vector& pressure() const { return pressure_; }
+
+  /// The most iterations each next solve may take, below its options' max_iterations: a
+  /// caller's budget (a time step's, WheelsetContact::set_iteration_budget); a solve that
+  /// reaches it ends with Status::iteration_limit. 0: the options' alone. clear() keeps it.
+  int iteration_limit() const { return iteration_limit_; }
+  /// @throws fastnorm::invalid_argument for a negative limit
+  void limit_iterations(int limit) {
+    FASTNORM_CHECK(limit >= 0, detail::describe("warm start: iteration limit must be >= 0", limit));
+    iteration_limit_ = limit;
+  }
+  /// `options` with max_iterations lowered to the limit (any options type with one).
+  template <typename Options>
+  Options limited(Options options) const {
+    if (iteration_limit_ > 0) options.max_iterations = std::min(options.max_iterations, iteration_limit_);
+    return options;
+  }
 
   /// Nothing to start from: the next solve is cold. Keeps the storage.
   void clear() {
@@ -86,6 +103,7 @@ class WarmStart {
   std::vector<Index> contact_set_;
   Vector pressure_;
   bool has_pressure_ = false;
+  int iteration_limit_ = 0;
 };
 
 }  // namespace fastnorm

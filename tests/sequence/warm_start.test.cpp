@@ -122,3 +122,30 @@ TEST_CASE("A cold solve does not depend on what the solver solved before", "[seq
     CHECK(again.pressure == first.pressure);
   }
 }
+
+TEST_CASE("A workspace's iteration limit bounds the next solves below the options' own", "[sequence][warm]") {
+  // WarmStart::limit_iterations (what WheelsetContact::set_iteration_budget sets per patch):
+  // a solve that needs more ends at the limit with Status::iteration_limit; 0 lifts it.
+  const auto sequence = moving_indenter(24, 1, 2e-5);
+  const auto& h = sequence.h.front();
+  for (const char* name : {"norm", "cg", "elliptic"}) {
+    INFO(name);
+    const fastnorm::AnySolver<> solver(name, sequence.grid, steel);
+    fastnorm::AnySolver<>::Workspace workspace;
+    const auto free_solve = solver.solve(h, fastnorm::Loading<>::approach(), workspace);
+    REQUIRE(free_solve.status == fastnorm::Status::converged);
+    REQUIRE(free_solve.iterations > 1);
+    workspace.forget();
+    workspace.start().limit_iterations(1);
+    const auto limited = solver.solve(h, fastnorm::Loading<>::approach(), workspace);
+    CHECK(limited.status == fastnorm::Status::iteration_limit);
+    CHECK(limited.iterations == 1);
+    CHECK(workspace.start().iteration_limit() == 1);  // kept for the solves after
+    workspace.forget();
+    workspace.start().limit_iterations(0);
+    const auto again = solver.solve(h, fastnorm::Loading<>::approach(), workspace);
+    CHECK(again.pressure == free_solve.pressure);
+  }
+  fastnorm::WarmStart<> start;
+  CHECK_THROWS_WITH(start.limit_iterations(-2), Catch::Matchers::Contains("iteration limit must be >= 0"));
+}

@@ -197,6 +197,67 @@ TEST_CASE("The step status names the wheel and patch that failed, and why", "[wh
   CHECK(starved.evaluate(pose, wr::Side::right).status.side == wr::Side::right);
 }
 
+TEST_CASE("A step spends at most its iteration budget, and reports what it spent", "[wheelrail][model]") {
+  // issue 27 item 6 (qpOASES' nWSR): the budget is shared by the step's patch solves in
+  // order; an ample one changes nothing, a tight one ends solves at the iteration limit.
+  const auto pose = pressed_pose();
+  for (const char* name : {"norm", "cg", "elliptic"}) {
+    INFO(name);
+    wr::WheelsetContact<> free_model(wr::Track(), wr::Wheelset(), coarse(name));
+    wr::WheelsetContact<> ample(wr::Track(), wr::Wheelset(), coarse(name));
+    ample.set_iteration_budget(100000);
+    CHECK(ample.iteration_budget() == 100000);
+    for (int step = 0; step < 3; ++step) {
+      auto moved = pose;
+      moved.y += 20e-6 * step;
+      const auto& expected = free_model.evaluate(moved);
+      const auto& got = ample.evaluate(moved);
+      REQUIRE(got.ok());
+      int spent = 0, patches = 0;
+      for (std::size_t w = 0; w < 2; ++w) {
+        int wheel_spent = 0;
+        REQUIRE(got.wheels[w].patches.size() == expected.wheels[w].patches.size());
+        for (std::size_t k = 0; k < got.wheels[w].patches.size(); ++k) {
+          CHECK(got.wheels[w].patches[k].solution.pressure == expected.wheels[w].patches[k].solution.pressure);
+          wheel_spent += got.wheels[w].patches[k].solution.iterations;
+          ++patches;
+        }
+        CHECK(got.wheels[w].iterations == wheel_spent);
+        spent += wheel_spent;
+      }
+      CHECK(got.iterations == spent);
+      CHECK(spent >= patches);
+    }
+  }
+  // Cold, an elliptic solve needs more than one set here; a budget of 1 gives every patch
+  // solve a single iteration, and the step status names the first that ended at the limit.
+  wr::WheelsetContact<> tight(wr::Track(), wr::Wheelset(), coarse("elliptic"));
+  tight.set_iteration_budget(1);
+  const auto& result = tight.evaluate(pose);
+  REQUIRE_FALSE(result.ok());
+  int patches = 0;
+  std::optional<std::pair<wr::Side, int>> first_limited;
+  for (std::size_t w = 0; w < 2; ++w) {
+    for (std::size_t k = 0; k < result.wheels[w].patches.size(); ++k, ++patches) {
+      const auto& solution = result.wheels[w].patches[k].solution;
+      CHECK(solution.iterations == 1);
+      if (!first_limited && solution.status == fastnorm::Status::iteration_limit) {
+        first_limited = std::make_pair(result.wheels[w].side, static_cast<int>(k));
+      }
+    }
+  }
+  CHECK(result.iterations == patches);
+  REQUIRE(first_limited.has_value());
+  CHECK(result.status.code == wr::StepStatus::Code::patch_failed);
+  CHECK(result.status.side == first_limited->first);
+  CHECK(result.status.patch == first_limited->second);
+  CHECK(result.status.solver_status == fastnorm::Status::iteration_limit);
+  // The budget is the next step's too; 0 lifts it.
+  tight.set_iteration_budget(0);
+  CHECK(tight.evaluate(pose).ok());
+  CHECK_THROWS_WITH(tight.set_iteration_budget(-1), Contains("iterations must be >= 0"));
+}
+
 namespace {
 
 // Along a short trajectory, a trial step evaluated, its history restored and the step

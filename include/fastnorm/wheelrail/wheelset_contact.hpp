@@ -182,6 +182,21 @@ class WheelsetContact {
     return evaluate_one(pose, &velocity, side);
   }
 
+  /// The most solver iterations (active-set iterations; CG's for CG) an evaluate may spend
+  /// over all its patch solves, in the order it solves them (left wheel first, tread
+  /// first), as qpOASES' nWSR: each solve may take what the solves before it left, but at
+  /// least one iteration, so a step spends at most the budget plus one per later patch. A
+  /// solve that reaches its share ends with Status::iteration_limit, and the step status
+  /// names it. What a step spent is `iterations` of its result. 0 (the default): no
+  /// budget, each solve bounded by its solver's max_iterations alone.
+  /// @throws fastnorm::invalid_argument for a negative budget
+  void set_iteration_budget(int iterations) {
+    FASTNORM_CHECK(iterations >= 0,
+                   fastnorm::detail::describe("WheelsetContact::set_iteration_budget: iterations must be >= 0", iterations));
+    iteration_budget_ = iterations;
+  }
+  int iteration_budget() const { return iteration_budget_; }
+
   /// The next evaluate starts cold: no previous patches, no contact sets (storage kept).
   void reset() {
     for (auto& sampler : samplers_) sampler.reset();
@@ -226,11 +241,14 @@ class WheelsetContact {
     result_.force.setZero();
     result_.moment.setZero();
     result_.status = StepStatus{StepStatus::Code::ok, Side::left, -1, Status::not_solved, {}};
+    result_.iterations = 0;
+    iterations_left_ = iteration_budget_;
     for (Side side : {Side::left, Side::right}) {
       WheelContact& wheel = result_.wheels[wheel_index(side)];
       evaluate_wheel(side, pose, velocity, wheel);
       result_.force += wheel.force;
       result_.moment += wheel.moment;
+      result_.iterations += wheel.iterations;
       if (result_.status.ok() && !wheel.status.ok()) result_.status = wheel.status;
     }
     return result_;
@@ -239,6 +257,7 @@ class WheelsetContact {
   const WheelContact& evaluate_one(const WheelsetPose& pose, const WheelsetVelocity* velocity, Side side) {
     check_pose(pose, "WheelsetContact::evaluate");
     WheelContact& wheel = result_.wheels[wheel_index(side)];
+    iterations_left_ = iteration_budget_;
     evaluate_wheel(side, pose, velocity, wheel);
     return wheel;
   }
@@ -299,10 +318,14 @@ class WheelsetContact {
 
     clock = std::chrono::steady_clock::now();
     wheel.status = StepStatus{StepStatus::Code::ok, side, -1, Status::not_solved, {}};
+    wheel.iterations = 0;
     for (std::size_t k = 0; k < count; ++k) {
       start_from(successors[k], previous, next[k]);
       const PatchContact& patch = wheel.patches[k];
+      next[k].workspace.start().limit_iterations(iteration_budget_ > 0 ? std::max(1, iterations_left_) : 0);
       solve_patch(pose, next[k], wheel.patches[k]);
+      wheel.iterations += patch.solution.iterations;
+      iterations_left_ -= patch.solution.iterations;
       if (wheel.status.ok() && !patch.ok()) {
         wheel.status = {StepStatus::Code::patch_failed, side, static_cast<int>(k), patch.solution.status,
                         std::string(to_string(side)) + " wheel, patch " + std::to_string(k) + " of " +
@@ -625,6 +648,8 @@ class WheelsetContact {
   Wheelset wheelset_;
   WheelsetContactOptions options_;
   double dx_ = 0, ds_ = 0;
+  int iteration_budget_ = 0;  // set_iteration_budget
+  int iterations_left_ = 0;   // of the budget, in the evaluate under way
   /// A solver and the workspaces with its storage that no patch holds at the moment.
   struct SolverSlot {
     Solver solver;

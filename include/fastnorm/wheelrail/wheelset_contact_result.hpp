@@ -125,6 +125,9 @@ struct WheelContact {
   /// (Wheelset::at_flange_climb): the wheel is at flange climb.
   bool flange_climb = false;
   StageTimes times;
+  /// The work its patch solves spent: the sum of their Solution::iterations (active-set
+  /// iterations; CG's for CG), what WheelsetContact::set_iteration_budget counts.
+  int iterations = 0;
   StepStatus status;  ///< this wheel's: ok, or its first failed patch
 
   bool ok() const { return status.ok(); }
@@ -137,6 +140,7 @@ struct WheelsetContactResult {
   Eigen::Vector3d force = Eigen::Vector3d::Zero();   ///< on the wheelset (N)
   Eigen::Vector3d moment = Eigen::Vector3d::Zero();  ///< about its centre (N·m)
   StepStatus status;  ///< ok, or the first failed patch (left wheel first)
+  int iterations = 0;  ///< the work of the step: both wheels' `iterations`
 
   const WheelContact& wheel(Side side) const { return wheels[wheel_index(side)]; }
   /// Every patch solved with a usable answer.
