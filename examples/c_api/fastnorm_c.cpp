@@ -34,6 +34,7 @@ struct fastnorm_wheelset {
   wr::StepStatus step;          // of the last evaluate; not_solved after an equilibrium
   std::optional<wr::Equilibrium> equilibrium;  // the last equilibrium, when it was the last call
   std::array<std::vector<const wr::PatchContact*>, 2> patches;  // what fastnorm_wheelset_patch reads
+  int iterations;  // the solver iterations of the last evaluate
 };
 
 namespace {
@@ -416,7 +417,7 @@ int fastnorm_wheelset_create(const fastnorm_wheelset_options* options, fastnorm_
                                       options->creep_method));
     contact.creep.method =
         options->creep_method == FASTNORM_FASTSIM ? wr::CreepMethod::fastsim : wr::CreepMethod::strip_theory;
-    *model = new fastnorm_wheelset{wr::WheelsetContact<>(setup.track(), setup.wheelset(), contact), {}, {}, {}};
+    *model = new fastnorm_wheelset{wr::WheelsetContact<>(setup.track(), setup.wheelset(), contact), {}, {}, {}, 0};
   });
 }
 
@@ -433,6 +434,7 @@ void evaluate_into(fastnorm_wheelset* model, const fastnorm_pose* pose, const fa
   model->equilibrium.reset();
   for (auto& patches : model->patches) patches.clear();
   model->step = {};
+  model->iterations = 0;
   const wr::WheelsetPose at{pose->y, pose->z, pose->roll, pose->yaw};
   const auto& result =
       velocity ? model->model.evaluate(at, wr::WheelsetVelocity{velocity->forward, velocity->lateral, velocity->vertical,
@@ -445,6 +447,7 @@ void evaluate_into(fastnorm_wheelset* model, const fastnorm_pose* pose, const fa
   if (force) copy3(result.force, force);
   if (moment) copy3(result.moment, moment);
   model->step = result.status;
+  model->iterations = result.iterations;
   if (!result.ok()) throw patch_failed(result.status.message);
 }
 
@@ -470,6 +473,21 @@ int fastnorm_wheelset_reset(fastnorm_wheelset* model) {
     model->equilibrium.reset();
     model->step = {};
     for (auto& patches : model->patches) patches.clear();
+  });
+}
+
+int fastnorm_wheelset_set_iteration_budget(fastnorm_wheelset* model, int iterations) {
+  return guarded("fastnorm_wheelset_set_iteration_budget", [&] {
+    require_pointer(model, "model");
+    model->model.set_iteration_budget(iterations);
+  });
+}
+
+int fastnorm_wheelset_iterations(const fastnorm_wheelset* model, int* iterations) {
+  return guarded("fastnorm_wheelset_iterations", [&] {
+    require_pointer(model, "model");
+    require_pointer(iterations, "iterations");
+    *iterations = model->iterations;
   });
 }
 

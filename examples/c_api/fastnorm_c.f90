@@ -237,6 +237,16 @@ module fastnorm_c
       type(c_ptr), value :: model
       type(fastnorm_step_status), intent(out) :: status
     end function
+    integer(c_int) function fastnorm_wheelset_set_iteration_budget(model, iterations) bind(c)
+      import :: c_int, c_ptr
+      type(c_ptr), value :: model
+      integer(c_int), value :: iterations
+    end function
+    integer(c_int) function fastnorm_wheelset_iterations(model, iterations) bind(c)
+      import :: c_int, c_ptr
+      type(c_ptr), value :: model
+      integer(c_int), intent(out) :: iterations
+    end function
     integer(c_int) function fastnorm_wheelset_reset(model) bind(c)
       import :: c_int, c_ptr
       type(c_ptr), value :: model

@@ -266,6 +266,12 @@ FASTNORM_C_API int fastnorm_wheelset_evaluate(fastnorm_wheelset* model, const fa
 FASTNORM_C_API int fastnorm_wheelset_evaluate_moving(fastnorm_wheelset* model, const fastnorm_pose* pose,
                                                      const fastnorm_velocity* velocity, double* force, double* moment);
 FASTNORM_C_API int fastnorm_wheelset_step_status(const fastnorm_wheelset* model, fastnorm_step_status* status);
+/* The most solver iterations an evaluate may spend over its patch solves, in order, each at
+ * least one (docs/wheel-rail.md §9): a solve cut short ends at FASTNORM_ITERATION_LIMIT and
+ * the evaluate returns FASTNORM_ERROR_PATCH_FAILED naming it; 0 (the default): none. */
+FASTNORM_C_API int fastnorm_wheelset_set_iteration_budget(fastnorm_wheelset* model, int iterations);
+/* The solver iterations the last evaluate spent over its patch solves (0 before any). */
+FASTNORM_C_API int fastnorm_wheelset_iterations(const fastnorm_wheelset* model, int* iterations);
 /* The next evaluate starts cold: no previous patches, contact sets or search (storage kept);
  * the patches and status read as after create. */
 FASTNORM_C_API int fastnorm_wheelset_reset(fastnorm_wheelset* model);

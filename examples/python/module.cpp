@@ -317,6 +317,7 @@ struct PyWheel {
   double normal_force = 0;
   bool flange_climb = false;
   wr::StepStatus status;
+  int iterations = 0;
 };
 
 struct PyWheelsetResult {
@@ -324,6 +325,7 @@ struct PyWheelsetResult {
   std::vector<PyWheel> wheels;  // left, right
   py::array_t<double> force, moment;
   wr::StepStatus status;
+  int iterations = 0;
 };
 
 struct PyEquilibrium {
@@ -381,13 +383,21 @@ class PyWheelset {
       copy.normal_force = wheel.normal_force;
       copy.flange_climb = wheel.flange_climb;
       copy.status = wheel.status;
+      copy.iterations = wheel.iterations;
       out.wheels.push_back(std::move(copy));
     }
     out.force = vector3(result->force);
     out.moment = vector3(result->moment);
     out.status = result->status;
+    out.iterations = result->iterations;
     return out;
   }
+
+  void set_iteration_budget(int iterations) {
+    const std::lock_guard<std::mutex> lock(calls_);
+    model_.set_iteration_budget(iterations);
+  }
+  int iteration_budget() const { return model_.iteration_budget(); }
 
   PyEquilibrium equilibrium(double load, double y, double yaw, double force_tolerance, int max_iterations) {
     wr::EquilibriumOptions options;
@@ -765,6 +775,7 @@ void bind_wheelset(py::module_& m) {
       .def_readonly("normal_force_n", &PyWheel::normal_force)
       .def_readonly("flange_climb", &PyWheel::flange_climb)
       .def_readonly("status", &PyWheel::status, "this wheel's StepStatus")
+      .def_readonly("iterations", &PyWheel::iterations, "the solver iterations its patch solves spent")
       .def("__repr__", [](const PyWheel& wheel) {
         return "Wheel(side='" + wheel.side + "', patches=" + std::to_string(wheel.patches.size()) +
                ", normal_force_n=" + number(wheel.normal_force) + ", flange_climb=" +
@@ -776,6 +787,8 @@ void bind_wheelset(py::module_& m) {
       .def_readonly("wheels", &PyWheelsetResult::wheels, "[left, right]")
       .def_readonly("force_n", &PyWheelsetResult::force, "on the wheelset, track frame (N)")
       .def_readonly("moment_nm", &PyWheelsetResult::moment, "about its centre (N m)")
+      .def_readonly("iterations", &PyWheelsetResult::iterations,
+                    "the solver iterations the step spent (what iteration_budget counts)")
       .def_readonly("status", &PyWheelsetResult::status,
                     "StepStatus: ok, or the first failed patch (wheel, patch, solver status, message)")
       .def_property_readonly("ok", [](const PyWheelsetResult& result) { return result.status.ok(); },
@@ -843,6 +856,10 @@ void bind_wheelset(py::module_& m) {
           "reset",
           [](PyWheelset& model) { model.reset(); },
           "The next evaluate starts cold: no previous patches, contact sets or search.")
+      .def_property("iteration_budget", &PyWheelset::iteration_budget, &PyWheelset::set_iteration_budget,
+                    "the most solver iterations an evaluate may spend over its patch solves, in order, each at "
+                    "least one (docs/wheel-rail.md §9); a solve cut short ends at 'iteration limit' and the "
+                    "status names it; 0 (default): none")
       .def_property_readonly("flange_angle_rad", &PyWheelset::flange_angle,
                              "the steepest angle of the wheel's flange face")
       .def("__repr__", [](const PyWheelset& model) { return model.description(); });

@@ -161,3 +161,38 @@ TEST_CASE("The C API's steady rolling is the C++ solver's bit for bit", "[cli][c
   CHECK(Eigen::Map<const Eigen::VectorXd>(traction_x.data(), grid.size()) == cpp.traction_x);
   CHECK(Eigen::Map<const Eigen::VectorXd>(traction_y.data(), grid.size()) == cpp.traction_y);
 }
+
+TEST_CASE("The C API's iteration budget and the work it reports are the C++ model's", "[cli][c_api]") {
+  fastnorm_wheelset_options c_options;
+  fastnorm_wheelset_options_default(&c_options);
+  c_options.solver = "elliptic";
+  c_options.elements = 24;
+  fastnorm_wheelset* c_model = nullptr;
+  REQUIRE_C_OK(fastnorm_wheelset_create(&c_options, &c_model));
+  wr::WheelsetContactOptions options;
+  options.solver = fastnorm::SolverSpec<double>::parse("elliptic");
+  options.grid.elements = 24;
+  const wr::WheelsetOnTrack setup;
+  wr::WheelsetContact<> model(setup.track(), setup.wheelset(), options);
+  wr::WheelsetPose pose = wr::rigid_contact_pose(model.track(), model.wheelset(), 2e-3, 0);
+  pose.z += 0.1e-3;
+  const fastnorm_pose c_pose = {pose.y, pose.z, pose.roll, pose.yaw};
+  int spent = -1;
+  for (const int budget : {0, 1, 100000}) {
+    INFO("budget " << budget);
+    model.set_iteration_budget(budget);
+    REQUIRE_C_OK(fastnorm_wheelset_set_iteration_budget(c_model, budget));
+    model.reset();
+    REQUIRE_C_OK(fastnorm_wheelset_reset(c_model));
+    const auto& cpp = model.evaluate(pose);
+    const int status = fastnorm_wheelset_evaluate(c_model, &c_pose, nullptr, nullptr);
+    CHECK(status == (cpp.ok() ? FASTNORM_OK : FASTNORM_ERROR_PATCH_FAILED));
+    CHECK(cpp.ok() == (budget != 1));  // one iteration a patch cannot settle these cold solves
+    REQUIRE_C_OK(fastnorm_wheelset_iterations(c_model, &spent));
+    CHECK(spent == cpp.iterations);
+    CHECK(spent > 0);
+  }
+  CHECK(fastnorm_wheelset_set_iteration_budget(c_model, -1) == FASTNORM_ERROR_ARGUMENT);
+  CHECK(std::string(fastnorm_last_error()).find("iterations must be >= 0") != std::string::npos);
+  fastnorm_wheelset_destroy(c_model);
+}

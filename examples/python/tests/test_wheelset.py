@@ -169,3 +169,28 @@ def test_creep_forces_need_friction_and_a_forward_speed():
     with pytest.raises(ValueError, match="velocity.forward"):
         fastnorm.WheelsetContact(solver="elliptic", elements=20, friction=0.3).evaluate(
             pose, velocity=fastnorm.Velocity(forward_m_per_s=0.0))
+
+
+def test_an_iteration_budget_bounds_a_step_and_the_step_reports_its_work():
+    pose = fastnorm.Pose(lateral_shift_m=2e-3, vertical_m=fastnorm.WheelsetContact(solver="elliptic", elements=20)
+                         .equilibrium(load_n=2e5, lateral_shift_m=2e-3).pose.vertical_m)
+    free = fastnorm.WheelsetContact(solver="elliptic", elements=20).evaluate(pose)
+    ample = fastnorm.WheelsetContact(solver="elliptic", elements=20)
+    ample.iteration_budget = 100000
+    assert ample.iteration_budget == 100000
+    result = ample.evaluate(pose)
+    assert result.ok
+    spent = [sum(patch.solution.iterations for patch in wheel.patches) for wheel in result.wheels]
+    assert [wheel.iterations for wheel in result.wheels] == spent
+    assert result.iterations == sum(spent) == free.iterations
+    for wheel, reference in zip(result.wheels, free.wheels):
+        for patch, expected in zip(wheel.patches, reference.patches):
+            assert np.array_equal(patch.solution.pressure_pa, expected.solution.pressure_pa)
+    tight = fastnorm.WheelsetContact(solver="elliptic", elements=20)
+    tight.iteration_budget = 1
+    cut = tight.evaluate(pose)
+    assert not cut.ok
+    assert cut.status.solver_status == "iteration limit"
+    assert cut.iterations == sum(len(wheel.patches) for wheel in cut.wheels)
+    with pytest.raises(ValueError, match="iterations must be >= 0"):
+        tight.iteration_budget = -1
