@@ -72,13 +72,7 @@ struct TangentialArguments {
   fastnorm::CaseRolling<double> as_case() const { return {friction, creepage(), direction}; }
 
   fastnorm::Creepage<double> creepage() const {
-    fastnorm::Creepage<double> value;
-    value.longitudinal = creepage_x;
-    value.lateral = creepage_y;
-    value.spin = spin;
-    value.spin_centre_x = spin_centre_x;
-    value.spin_centre_y = spin_centre_y;
-    return value;
+    return {creepage_x, creepage_y, spin, spin_centre_x, spin_centre_y};
   }
 
   /// Steady rolling on `normal` (a solution on `grid`) by the chosen method, as the fields

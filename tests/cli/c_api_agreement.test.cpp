@@ -65,6 +65,26 @@ void check_wheel(const fastnorm_wheelset* model, int w, const wr::WheelContact& 
   }
 }
 
+/// The C++ model a C model of fastnorm_wheelset_options_default is, with `solver`,
+/// `elements`, `cant` and the creep options changed (S1002 on UIC60, steel: fastnorm_c.h).
+wr::WheelsetContact<> cpp_model(const char* solver, int elements, double cant = wr::TrackLayout().cant,
+                                const wr::CreepOptions& creep = {}) {
+  wr::WheelsetContactOptions options;
+  options.solver = fastnorm::SolverSpec<double>::parse(solver);
+  options.grid.elements = elements;
+  options.creep = creep;
+  wr::WheelsetOnTrack setup;
+  setup.cant = cant;
+  return wr::WheelsetContact<>(setup.track(), setup.wheelset(), options);
+}
+
+/// The model's rigid contact at (y, yaw), pressed `depth` (m) further.
+wr::WheelsetPose pressed(const wr::WheelsetContact<>& model, double y, double yaw, double depth) {
+  wr::WheelsetPose pose = wr::rigid_contact_pose(model.track(), model.wheelset(), y, yaw);
+  pose.z += depth;
+  return pose;
+}
+
 }  // namespace
 
 TEST_CASE("The C API's wheelset model gives the C++ model's creep forces bit for bit", "[cli][c_api][creep]") {
@@ -80,23 +100,17 @@ TEST_CASE("The C API's wheelset model gives the C++ model's creep forces bit for
       fastnorm_wheelset* c_model = nullptr;
       REQUIRE_C_OK(fastnorm_wheelset_create(&c_options, &c_model));
 
-      // The same model in C++, as fastnorm_c.h documents its defaults: S1002 on UIC60, steel.
-      wr::WheelsetContactOptions options;
-      options.solver = fastnorm::SolverSpec<double>::parse("elliptic");
-      options.grid.elements = 30;
-      options.creep.friction = 0.3;
-      options.creep.method = method == FASTNORM_FASTSIM ? wr::CreepMethod::fastsim : wr::CreepMethod::strip_theory;
-      wr::WheelsetOnTrack setup;
-      setup.cant = 0.05;
-      wr::WheelsetContact<> model(setup.track(), setup.wheelset(), options);
+      wr::CreepOptions creep;
+      creep.friction = 0.3;
+      creep.method = method == FASTNORM_FASTSIM ? wr::CreepMethod::fastsim : wr::CreepMethod::strip_theory;
+      auto model = cpp_model("elliptic", 30, 0.05, creep);
 
       // A short lateral run from the centre to two-point contact on the right wheel, yawed,
       // moving at 30 m/s with lateral and yaw rates.
       std::size_t most_patches = 0;
       for (const double y : {0.0, 3e-3, 5e-3, 6e-3, 6.5e-3, 7e-3}) {
         INFO("y = " << y);
-        wr::WheelsetPose pose = wr::rigid_contact_pose(model.track(), model.wheelset(), y, 1e-3);
-        pose.z += 0.05e-3;
+        const wr::WheelsetPose pose = pressed(model, y, 1e-3, 0.05e-3);
         wr::WheelsetVelocity velocity;
         velocity.forward = 30;
         velocity.lateral = 0.05;
@@ -125,17 +139,11 @@ TEST_CASE("The C API's wheelset model gives the C++ model's creep forces bit for
 TEST_CASE("The C API's steady rolling is the C++ solver's bit for bit", "[cli][c_api][tangential]") {
   // A wheel-rail patch of the model (elliptic pressures), rolled towards -x with all three
   // creepages about a spin centre off the grid's origin: the exact path through both.
-  wr::WheelsetContactOptions options;
-  options.solver = fastnorm::SolverSpec<double>::parse("elliptic");
-  options.grid.elements = 24;
-  const wr::WheelsetOnTrack setup;
-  wr::WheelsetContact<> model(setup.track(), setup.wheelset(), options);
-  wr::WheelsetPose pose = wr::rigid_contact_pose(model.track(), model.wheelset(), 3e-3, 0);
-  pose.z += 0.1e-3;
-  const auto& patch = model.evaluate(pose).wheels[1].patches.at(0);
+  auto model = cpp_model("elliptic", 24);
+  const auto& patch = model.evaluate(pressed(model, 3e-3, 0, 0.1e-3)).wheels[1].patches.at(0);
   const auto& grid = patch.patch.grid;
   const fastnorm::Creepage<double> creepage{1e-3, -5e-4, 0.4, 1e-3, -2e-4};
-  const auto material = options.material;
+  const auto material = model.options().material;
   const auto cpp = fastnorm::solve_steady_rolling(grid, material, patch.solution, 0.3, creepage,
                                                   fastnorm::RollingDirection::negative_x);
   REQUIRE(cpp.ok());
@@ -169,13 +177,8 @@ TEST_CASE("The C API's iteration budget and the work it reports are the C++ mode
   c_options.elements = 24;
   fastnorm_wheelset* c_model = nullptr;
   REQUIRE_C_OK(fastnorm_wheelset_create(&c_options, &c_model));
-  wr::WheelsetContactOptions options;
-  options.solver = fastnorm::SolverSpec<double>::parse("elliptic");
-  options.grid.elements = 24;
-  const wr::WheelsetOnTrack setup;
-  wr::WheelsetContact<> model(setup.track(), setup.wheelset(), options);
-  wr::WheelsetPose pose = wr::rigid_contact_pose(model.track(), model.wheelset(), 2e-3, 0);
-  pose.z += 0.1e-3;
+  auto model = cpp_model("elliptic", 24);
+  const wr::WheelsetPose pose = pressed(model, 2e-3, 0, 0.1e-3);
   const fastnorm_pose c_pose = {pose.y, pose.z, pose.roll, pose.yaw};
   int spent = -1;
   for (const int budget : {0, 1, 100000}) {

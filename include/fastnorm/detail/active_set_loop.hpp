@@ -92,8 +92,10 @@ class ActiveSetLoop {
     work_.visited_ends.clear();
     work_.admissible_set.clear();  // last set with all pressures positive
     work_.is_active.assign(static_cast<std::size_t>(n_all), 0);
-    work_.bounded_at.assign(static_cast<std::size_t>(n_all), 0);
-    work_.displacement_floor.resize(static_cast<std::size_t>(n_all));
+    if (options_.bound_join_check) {
+      work_.bounded_at.assign(static_cast<std::size_t>(n_all), 0);
+      work_.displacement_floor.resize(static_cast<std::size_t>(n_all));
+    }
     work_.checks = 0;
     while (solution_.iterations < options_.max_iterations) {
       if (work_.seen_before(work_.active)) {
@@ -231,11 +233,15 @@ class ActiveSetLoop {
       const Scalar gap = h_(k) - approach_ + displacement(static_cast<Index>(t));
       deepest_gap = std::min(deepest_gap, gap);
       if (gap < join_below_) work_.joining.push_back(k);
-      work_.displacement_floor[static_cast<std::size_t>(k)] = displacement(static_cast<Index>(t));
-      work_.bounded_at[static_cast<std::size_t>(k)] = work_.checks;
     }
     residual_ = std::max(Scalar(0), -deepest_gap) / (approach_ - deepest_);
+    if (!options_.bound_join_check) return;
     // What the next check bounds the change from.
+    for (std::size_t t = 0; t < work_.candidates.size(); ++t) {
+      const auto e = static_cast<std::size_t>(work_.candidates[t]);
+      work_.displacement_floor[e] = displacement(static_cast<Index>(t));
+      work_.bounded_at[e] = work_.checks;
+    }
     work_.checked_set = work_.active;
     work_.checked_pressure.assign(pressure.data(), pressure.data() + pressure.size());
   }
