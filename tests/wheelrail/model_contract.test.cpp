@@ -294,6 +294,37 @@ TEST_CASE("A trial step restored leaves no trace: the step again is bit for bit 
   check_trial_steps<fastnorm::AnySolver<>>("polynomial:4");
 }
 
+namespace {
+
+// After evaluations elsewhere and reset(), a pose gives bit for bit a new model's answer: no
+// contact set, search or kept assembly of the earlier poses leaks through (a contact
+// table's cases, computed in any order, rely on it: docs/tables.md §2).
+template <typename Solver>
+void check_reset_forgets(const char* name) {
+  INFO(name);
+  const auto options = coarse(name);
+  const auto pose = pressed_pose();
+  wr::WheelsetContact<Solver> fresh(wr::Track(), wr::Wheelset(), options);
+  wr::WheelsetContact<Solver> model(wr::Track(), wr::Wheelset(), options);
+  for (double shift : {-3e-3, 3.6e-3, 3.9e-3, 4.1e-3, 5e-3}) {  // other sizes, near sets, a flange
+    auto other = pose;
+    other.y = shift;
+    model.evaluate(other);
+    model.reset();
+    check_same_patches(model.evaluate(pose), fresh.evaluate(pose));
+    fresh.reset();
+  }
+}
+
+}  // namespace
+
+TEST_CASE("reset() forgets: a pose after other poses and a reset is bit for bit a new model's", "[wheelrail][model]") {
+  check_reset_forgets<fastnorm::NormSolver<>>("norm");
+  check_reset_forgets<fastnorm::ReducedSolver<fastnorm::EllipticBasis>>("elliptic");
+  check_reset_forgets<fastnorm::ReducedSolver<fastnorm::PolynomialEdgeBasis>>("polynomial-edge:4:1");
+  check_reset_forgets<fastnorm::AnySolver<>>("polynomial:4");
+}
+
 TEST_CASE("The same pose reached along different histories: forces within the grid's and the basis's cold bounds",
           "[wheelrail][model]") {
   // An answer depends on the committed history in two ways (docs/wheel-rail.md §9): the

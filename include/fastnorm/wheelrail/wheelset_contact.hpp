@@ -197,13 +197,16 @@ class WheelsetContact {
   }
   int iteration_budget() const { return iteration_budget_; }
 
-  /// The next evaluate starts cold: no previous patches, no contact sets (storage kept).
+  /// The next evaluate starts cold: no previous patches, no contact sets, no assemblies a
+  /// solver kept (storage kept), so that what follows is bit for bit what a new model gives.
   void reset() {
     for (auto& sampler : samplers_) sampler.reset();
     for (auto& states : states_) {
       keep_spare_workspaces(states);
       detail::resize_keeping_storage(states, spare_states_, 0);
     }
+    for (auto& solver : solvers_)
+      for (auto& workspace : solver.spare) workspace.forget();
   }
 
   /// What the next evaluate starts from: each patch's frame, lattice box, contact set and
