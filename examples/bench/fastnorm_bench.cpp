@@ -13,6 +13,7 @@
 //   fastnorm-bench --trajectory [--steps 2000] [--trajectory-solvers norm,cg,elliptic,elliptic+warm,...]: trajectory.hpp
 //   fastnorm-bench --tangential [--repeats 5] [CASE...]: steady rolling on CONTACT's Hertz examples or the cases, tangential.hpp
 //   fastnorm-bench --creep-accuracy CASE...: FASTSIM and strip theory against the exact path at four adhesion levels, tangential.hpp
+//   fastnorm-bench --table [--repeats 5]: ContactTable lookups, multilinear and PCHIP, table_lookup.hpp
 //     growth=hertz_<n>x<n> elements=<N> ncontact=<n> norm_s=<t> cg_s=<t> cg_iterations=<k>
 //          cg_mb=<m> elliptic_s=<t> polynomial4_s=<t> max_rss_mb=<m>
 //
@@ -40,6 +41,7 @@
 #include <vector>
 
 #include "support/arguments.hpp"
+#include "table_lookup.hpp"
 #include "tangential.hpp"
 #include "trajectory.hpp"
 
@@ -240,7 +242,7 @@ struct Arguments {
   std::vector<std::string> cases;
   int repeats = 5, calls = 50;
   long norm_limit = 6000;
-  bool growth = false, sequence = false, trajectory = false, tangential = false, creep_accuracy = false;
+  bool growth = false, sequence = false, trajectory = false, tangential = false, creep_accuracy = false, table = false;
   int steps = 2000;
   std::vector<std::string> sequence_solvers{"cg", "elliptic", "polynomial:4"}, solvers;
   std::vector<std::string> trajectory_solvers{"norm", "cg", "elliptic", "polynomial:4", "polynomial-edge:4:1"};
@@ -264,6 +266,7 @@ fastnorm_example::CommandLine command_line(Arguments& a) {
   line.option("--steps", a.steps, "N", "--trajectory: time steps (1 ms each)", at_least(3));
   line.flag("--tangential", a.tangential, "time the steady-rolling solver on CONTACT's Hertz examples (or on the CASEs) instead");
   line.flag("--creep-accuracy", a.creep_accuracy, "FASTSIM and strip theory against the exact path on the CASEs at four adhesion levels instead");
+  line.flag("--table", a.table, "time ContactTable lookups (multilinear, PCHIP) on an 85 x 21 x 5 table instead");
   line.option("--trajectory-solvers", a.trajectory_solvers, "NAME,...", "--trajectory: the solvers, NORM first anyway; NAME+warm, NAME+cold: a reduced solver started warm or cold whatever its default (both: compared step by step); NAME+fastsim: creep forces by FASTSIM instead of strip theory");
   return line;
 }
@@ -271,6 +274,10 @@ fastnorm_example::CommandLine command_line(Arguments& a) {
 int run(const Arguments& a) {
   if (a.trajectory) {
     fastnorm_bench::bench_trajectory(a.trajectory_solvers, a.steps);
+    return 0;
+  }
+  if (a.table) {
+    fastnorm_bench::bench_table_lookup(a.repeats);
     return 0;
   }
   if (a.creep_accuracy) {

@@ -4,9 +4,10 @@
  * sequence call gives the cold answer; bad input returns FASTNORM_ERROR_ARGUMENT with a
  * message naming the argument; the wheelset model's equilibrium carries its load; steady
  * rolling gives CONTACT's creep forces on its large-spin Hertz example; a case's tangential
- * line is read.
+ * line is read; a contact table written by hand from its documented format is looked up.
  * Usage: fastnorm_c_api_test PEER_CASE_FILE SCRATCH_DIR */
 #include <math.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -400,6 +401,83 @@ static void steady_rolling_meets_contact(void) {
   free(traction_y);
 }
 
+/* A contact table written here byte by byte from docs/tables.md's description of the file
+ * (so the format, not only the C++ writer, is what the reader accepts), then looked up:
+ * y = (-1, 0, 2) mm, yaw = (0, 10) mrad, one load, outputs fn = 1000 + 2e5 y + 3e3 yaw (N)
+ * and y itself (m); the case (y = 2 mm, yaw = 10 mrad) has another topology. */
+static void write_u32(FILE* file, unsigned value) {
+  const uint32_t v = (uint32_t)value;
+  fwrite(&v, sizeof v, 1, file);
+}
+
+static void write_text(FILE* file, const char* text) {
+  write_u32(file, (unsigned)strlen(text));
+  fwrite(text, 1, strlen(text), file);
+}
+
+static double table_fn(double y, double yaw) { return 1000 + 2e5 * y + 3e3 * yaw; }
+
+static void contact_table_lookup(const char* scratch) {
+  char path[1024];
+  snprintf(path, sizeof path, "%s/c_api_test.fntable", scratch);
+  const double shifts[3] = {-1e-3, 0.0, 2e-3}, yaws[2] = {0.0, 0.01}, load = 1e5;
+  FILE* file = fopen(path, "wb");
+  EXPECT(file != NULL);
+  if (!file) return;
+  fwrite("FNTABLE\0", 1, 8, file);
+  write_u32(file, 1);                                          /* version */
+  write_u32(file, 1), write_u32(file, 3), write_u32(file, 2);  /* pairs, shifts, yaws */
+  write_u32(file, 1), write_u32(file, 2);                      /* loads, outputs */
+  fwrite(shifts, sizeof(double), 3, file);
+  fwrite(yaws, sizeof(double), 2, file);
+  fwrite(&load, sizeof(double), 1, file);
+  write_text(file, "S1002/UIC60");
+  write_text(file, "fn_n"), write_text(file, "shift_m");
+  write_text(file, "N"), write_text(file, "m");
+  for (int j = 0; j < 2; ++j)
+    for (int i = 0; i < 3; ++i) {
+      const double values[2] = {table_fn(shifts[i], yaws[j]), shifts[i]};
+      fwrite(values, sizeof(double), 2, file);
+    }
+  for (int j = 0; j < 2; ++j)
+    for (int i = 0; i < 3; ++i) {
+      const int32_t code = (i == 2 && j == 1) ? 3 : 1;
+      fwrite(&code, sizeof code, 1, file);
+    }
+  fclose(file);
+
+  fastnorm_table* table = NULL;
+  REQUIRE_OK(fastnorm_table_read(path, &table));
+  int pairs = 0, outputs = 0, index = -1;
+  REQUIRE_OK(fastnorm_table_info(table, &pairs, &outputs));
+  EXPECT(pairs == 1 && outputs == 2);
+  REQUIRE_OK(fastnorm_table_output_index(table, "shift_m", &index));
+  EXPECT(index == 1);
+  const char *name = NULL, *unit = NULL;
+  REQUIRE_OK(fastnorm_table_output_name(table, 0, &name, &unit));
+  EXPECT(strcmp(name, "fn_n") == 0 && strcmp(unit, "N") == 0);
+
+  double out[2] = {-1, -1};
+  int found = -1;
+  for (int interpolation = FASTNORM_TABLE_MULTILINEAR; interpolation <= FASTNORM_TABLE_PCHIP; ++interpolation) {
+    /* Linear data: both interpolations give it back. */
+    REQUIRE_OK(fastnorm_table_lookup(table, 0, -0.4e-3, 0.003, load, interpolation, out, &found));
+    EXPECT(found == FASTNORM_TABLE_FOUND);
+    EXPECT(fabs(out[0] - table_fn(-0.4e-3, 0.003)) < 1e-9 && fabs(out[1] + 0.4e-3) < 1e-15);
+    REQUIRE_OK(fastnorm_table_lookup(table, 0, 1e-3, 0.005, load, interpolation, out, &found));
+    EXPECT(found == FASTNORM_TABLE_TOPOLOGY_CHANGE);
+    REQUIRE_OK(fastnorm_table_lookup(table, 0, 3e-3, 0.005, load, interpolation, out, &found));
+    EXPECT(found == FASTNORM_TABLE_OUT_OF_RANGE);
+  }
+  expect_error(fastnorm_table_lookup(table, 0, 0, 0, load, 7, out, &found), "interpolation");
+  expect_error(fastnorm_table_lookup(table, 1, 0, 0, load, FASTNORM_TABLE_PCHIP, out, &found), "pair");
+  expect_error(fastnorm_table_output_index(table, "pmax", &index), "pmax");
+  fastnorm_table_destroy(table);
+  remove(path);
+  expect_error(fastnorm_table_read(path, &table), "cannot open");
+  EXPECT(table == NULL);
+}
+
 int main(int argc, char** argv) {
   if (argc != 3) {
     fprintf(stderr, "usage: %s PEER_CASE_FILE SCRATCH_DIR\n", argv[0]);
@@ -418,6 +496,7 @@ int main(int argc, char** argv) {
   wheelset_creep_forces();
   steady_rolling_meets_contact();
   case_rolling_is_read(argv[2]);
+  contact_table_lookup(argv[2]);
   if (failures) fprintf(stderr, "%d checks failed\n", failures);
   return failures ? 1 : 0;
 }

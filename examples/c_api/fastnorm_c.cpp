@@ -5,6 +5,7 @@
 
 #include <fastnorm/any_solver.hpp>
 #include <fastnorm/case_file.hpp>
+#include <fastnorm/contact_table_file.hpp>
 #include <fastnorm/tangential_solver.hpp>
 #include <fastnorm/version.hpp>
 #include <fastnorm/wheelrail.hpp>
@@ -27,6 +28,10 @@ struct fastnorm_solver {
 
 struct fastnorm_case {
   fastnorm::Case<double> problem;
+};
+
+struct fastnorm_table {
+  fastnorm::ContactTable table;
 };
 
 struct fastnorm_wheelset {
@@ -178,6 +183,10 @@ static_assert(static_cast<int>(wr::PatchHistory::continued) == FASTNORM_PATCH_CO
               static_cast<int>(wr::PatchHistory::appeared) == FASTNORM_PATCH_APPEARED &&
               static_cast<int>(wr::PatchHistory::merged) == FASTNORM_PATCH_MERGED &&
               static_cast<int>(wr::PatchHistory::split) == FASTNORM_PATCH_SPLIT);
+static_assert(static_cast<int>(fastnorm::TableLookupStatus::ok) == FASTNORM_TABLE_FOUND &&
+              static_cast<int>(fastnorm::TableLookupStatus::out_of_range) == FASTNORM_TABLE_OUT_OF_RANGE &&
+              static_cast<int>(fastnorm::TableLookupStatus::topology_change) == FASTNORM_TABLE_TOPOLOGY_CHANGE &&
+              static_cast<int>(fastnorm::TableLookupStatus::failed_case) == FASTNORM_TABLE_FAILED_CASE);
 
 }  // namespace
 
@@ -589,3 +598,62 @@ int fastnorm_wheelset_equilibrium(fastnorm_wheelset* model, double load, double 
 }
 
 }  // extern "C"
+
+int fastnorm_table_read(const char* path, fastnorm_table** table) {
+  return guarded("fastnorm_table_read", [&] {
+    require_pointer(path, "path");
+    require_pointer(table, "table");
+    *table = nullptr;
+    *table = new fastnorm_table{fastnorm::read_contact_table(path)};
+  });
+}
+
+void fastnorm_table_destroy(fastnorm_table* table) { delete table; }
+
+int fastnorm_table_info(const fastnorm_table* table, int* pairs, int* outputs) {
+  return guarded("fastnorm_table_info", [&] {
+    require_pointer(table, "table");
+    if (pairs) *pairs = static_cast<int>(table->table.pairs());
+    if (outputs) *outputs = static_cast<int>(table->table.outputs());
+  });
+}
+
+int fastnorm_table_output_index(const fastnorm_table* table, const char* name, int* index) {
+  return guarded("fastnorm_table_output_index", [&] {
+    require_pointer(table, "table");
+    require_pointer(name, "name");
+    require_pointer(index, "index");
+    *index = static_cast<int>(table->table.output_index(name));
+  });
+}
+
+int fastnorm_table_output_name(const fastnorm_table* table, int index, const char** name, const char** unit) {
+  return guarded("fastnorm_table_output_name", [&] {
+    require_pointer(table, "table");
+    if (index < 0 || static_cast<std::size_t>(index) >= table->table.outputs())
+      throw fastnorm::invalid_argument(
+          "fastnorm: " + fastnorm::describe("index must be below the table's " +
+                                                std::to_string(table->table.outputs()) + " outputs",
+                                            index));
+    if (name) *name = table->table.output_names()[static_cast<std::size_t>(index)].c_str();
+    if (unit) *unit = table->table.output_units()[static_cast<std::size_t>(index)].c_str();
+  });
+}
+
+int fastnorm_table_lookup(const fastnorm_table* table, int pair, double y, double yaw, double load,
+                          int interpolation, double* out, int* found) {
+  return guarded("fastnorm_table_lookup", [&] {
+    require_pointer(table, "table");
+    require_pointer(out, "out");
+    require_pointer(found, "found");
+    if (pair < 0) throw fastnorm::invalid_argument("fastnorm: " + fastnorm::describe("pair must not be negative", pair));
+    if (interpolation != FASTNORM_TABLE_MULTILINEAR && interpolation != FASTNORM_TABLE_PCHIP)
+      throw fastnorm::invalid_argument(
+          "fastnorm: " + fastnorm::describe("interpolation must be FASTNORM_TABLE_MULTILINEAR (0) or "
+                                            "FASTNORM_TABLE_PCHIP (1)",
+                                            interpolation));
+    const auto how = interpolation == FASTNORM_TABLE_PCHIP ? fastnorm::TableInterpolation::pchip
+                                                           : fastnorm::TableInterpolation::multilinear;
+    *found = static_cast<int>(table->table.lookup(static_cast<std::size_t>(pair), y, yaw, load, how, out));
+  });
+}

@@ -312,6 +312,36 @@ enum {
 FASTNORM_C_API int fastnorm_wheelset_equilibrium(fastnorm_wheelset* model, double load, double y, double yaw,
                                                  fastnorm_equilibrium* result);
 
+/* Contact tables (docs/tables.md §4): results precomputed over (lateral shift y in m, yaw in
+ * rad, load in N) per wheel/rail profile pair, read from the file `fastnorm-table export`
+ * writes, looked up in well under a microsecond (multilinear) or a few (PCHIP). A table is
+ * read-only once read: one table may be looked up by many threads at once. */
+typedef struct fastnorm_table fastnorm_table;
+
+enum { FASTNORM_TABLE_MULTILINEAR = 0, FASTNORM_TABLE_PCHIP = 1 };
+
+/* What a lookup found (an answer, not an error: fastnorm_table_lookup returns FASTNORM_OK). */
+enum {
+  FASTNORM_TABLE_FOUND = 0,           /* the outputs are written */
+  FASTNORM_TABLE_OUT_OF_RANGE = 1,    /* a coordinate outside its axis, or NaN; nothing written */
+  FASTNORM_TABLE_TOPOLOGY_CHANGE = 2, /* the cell's corners differ in patches or status: evaluate directly */
+  FASTNORM_TABLE_FAILED_CASE = 3      /* the cell's corners hold failed cases; nothing written */
+};
+
+FASTNORM_C_API int fastnorm_table_read(const char* path, fastnorm_table** table);
+FASTNORM_C_API void fastnorm_table_destroy(fastnorm_table* table);
+/* Its profile pairs and outputs per case (either pointer may be NULL). */
+FASTNORM_C_API int fastnorm_table_info(const fastnorm_table* table, int* pairs, int* outputs);
+/* The position of the output called name (e.g. "fn_left_n"), or FASTNORM_ERROR_ARGUMENT. */
+FASTNORM_C_API int fastnorm_table_output_index(const fastnorm_table* table, const char* name, int* index);
+/* The name and unit of output `index` (pointers into the table, valid while it lives). */
+FASTNORM_C_API int fastnorm_table_output_name(const fastnorm_table* table, int index, const char** name,
+                                              const char** unit);
+/* The outputs of pair `pair` (0-based) at (y, yaw, load) into out[0 .. outputs) when *found is
+ * FASTNORM_TABLE_FOUND; out is not touched otherwise. interpolation: FASTNORM_TABLE_*. */
+FASTNORM_C_API int fastnorm_table_lookup(const fastnorm_table* table, int pair, double y, double yaw, double load,
+                                         int interpolation, double* out, int* found);
+
 #ifdef __cplusplus
 }
 #endif

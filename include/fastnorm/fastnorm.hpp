@@ -15,4 +15,5 @@
 #include "fastnorm/kalker_coefficients.hpp"
 #include "fastnorm/tangential_solver.hpp"
 #include "fastnorm/io.hpp"
+#include "fastnorm/contact_table_file.hpp"
 #include "fastnorm/wheelrail.hpp"
