@@ -5,7 +5,8 @@ set -euo pipefail
 
 fastnorm_root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 fastnorm_packages=(cmake g++ gfortran libeigen3-dev catch2
-  python3-dev pybind11-dev python3-numpy python3-matplotlib python3-pytest python3-pip python3-setuptools)
+  python3-dev pybind11-dev python3-numpy python3-matplotlib python3-pytest python3-pip python3-setuptools
+  python3-distributed python3-xarray python3-netcdf4 netcdf-bin)
 
 fastnorm_install_packages() {
   local missing=()

@@ -10,6 +10,7 @@
 
 #include <fastnorm/any_solver.hpp>
 #include <fastnorm/case_file.hpp>
+#include <fastnorm/contact_table_file.hpp>
 #include <fastnorm/tangential_solver.hpp>
 #include <fastnorm/version.hpp>
 #include <fastnorm/wheelrail.hpp>
@@ -865,6 +866,85 @@ void bind_wheelset(py::module_& m) {
       .def("__repr__", [](const PyWheelset& model) { return model.description(); });
 }
 
+// Contact tables (docs/tables.md §4): arrays in, lookups out.
+using Int32Array = py::array_t<std::int32_t, py::array::c_style | py::array::forcecast>;
+
+std::vector<double> axis_of(const InputArray& array, const char* name) {
+  FASTNORM_CHECK(array.ndim() == 1, std::string(name) + " must be a one-dimensional array");
+  return {array.data(), array.data() + array.size()};
+}
+
+fastnorm::ContactTable make_table(const InputArray& lateral_shift_m, const InputArray& yaw_rad,
+                                  const InputArray& load_n, std::vector<std::string> pair_names,
+                                  std::vector<std::string> output_names, std::vector<std::string> output_units,
+                                  const InputArray& values, const Int32Array& topology) {
+  fastnorm::TableAxes axes{axis_of(lateral_shift_m, "lateral_shift_m"), axis_of(yaw_rad, "yaw_rad"),
+                           axis_of(load_n, "load_n")};
+  const std::vector<py::ssize_t> cases{static_cast<py::ssize_t>(pair_names.size()),
+                                       static_cast<py::ssize_t>(axes.load_n.size()),
+                                       static_cast<py::ssize_t>(axes.yaw_rad.size()),
+                                       static_cast<py::ssize_t>(axes.lateral_shift_m.size())};
+  auto shape_text = [](const std::vector<py::ssize_t>& shape) {
+    std::string text = "(";
+    for (std::size_t d = 0; d < shape.size(); ++d) text += (d ? ", " : "") + std::to_string(shape[d]);
+    return text + ")";
+  };
+  auto has_shape = [](const auto& array, const std::vector<py::ssize_t>& shape) {
+    if (array.ndim() != static_cast<py::ssize_t>(shape.size())) return false;
+    for (std::size_t d = 0; d < shape.size(); ++d)
+      if (array.shape(static_cast<py::ssize_t>(d)) != shape[d]) return false;
+    return true;
+  };
+  std::vector<py::ssize_t> value_shape = cases;
+  value_shape.push_back(static_cast<py::ssize_t>(output_names.size()));
+  FASTNORM_CHECK(has_shape(values, value_shape),
+                 "values must have shape (pairs, loads, yaws, shifts, outputs) = " + shape_text(value_shape));
+  FASTNORM_CHECK(has_shape(topology, cases),
+                 "topology must have shape (pairs, loads, yaws, shifts) = " + shape_text(cases));
+  return fastnorm::ContactTable(std::move(axes), std::move(pair_names), std::move(output_names),
+                                std::move(output_units), {values.data(), values.data() + values.size()},
+                                {topology.data(), topology.data() + topology.size()});
+}
+
+fastnorm::TableInterpolation interpolation_of(const std::string& name) {
+  if (name == "multilinear") return fastnorm::TableInterpolation::multilinear;
+  FASTNORM_CHECK(name == "pchip", "interpolation must be 'multilinear' or 'pchip' (got '" + name + "')");
+  return fastnorm::TableInterpolation::pchip;
+}
+
+void bind_tables(py::module_& m) {
+  py::class_<fastnorm::ContactTable>(
+      m, "ContactTable",
+      "A contact table over (pair, load, yaw, lateral shift) with named outputs, looked up by "
+      "multilinear or monotone cubic (PCHIP) interpolation with a topology guard (docs/tables.md §4). "
+      "values: shape (pairs, loads, yaws, shifts, outputs); topology: (pairs, loads, yaws, shifts), "
+      "a code >= 0 per solved case (cases interpolate together only when equal), < 0 for a failed one.")
+      .def(py::init(&make_table), py::kw_only(), "lateral_shift_m"_a, "yaw_rad"_a, "load_n"_a, "pair_names"_a,
+           "output_names"_a, "output_units"_a, "values"_a, "topology"_a)
+      .def_static("read", &fastnorm::read_contact_table, "path"_a, "Reads the file fastnorm-table export writes.")
+      .def("write", [](const fastnorm::ContactTable& table, const std::string& path) {
+            fastnorm::write_contact_table(table, path);
+          }, "path"_a, "Writes the table's file (docs/tables.md §4).")
+      .def_property_readonly("pair_names", &fastnorm::ContactTable::pair_names)
+      .def_property_readonly("output_names", &fastnorm::ContactTable::output_names)
+      .def_property_readonly("output_units", &fastnorm::ContactTable::output_units)
+      .def_property_readonly("lateral_shift_m", [](const fastnorm::ContactTable& t) { return t.axes().lateral_shift_m; })
+      .def_property_readonly("yaw_rad", [](const fastnorm::ContactTable& t) { return t.axes().yaw_rad; })
+      .def_property_readonly("load_n", [](const fastnorm::ContactTable& t) { return t.axes().load_n; })
+      .def(
+          "lookup",
+          [](const fastnorm::ContactTable& table, std::size_t pair, double y, double yaw, double load,
+             const std::string& interpolation) -> py::tuple {
+            py::array_t<double> out(static_cast<py::ssize_t>(table.outputs()));
+            const auto found = table.lookup(pair, y, yaw, load, interpolation_of(interpolation), out.mutable_data());
+            if (found != fastnorm::TableLookupStatus::ok) return py::make_tuple(fastnorm::to_string(found), py::none());
+            return py::make_tuple("ok", out);
+          },
+          "pair"_a, "lateral_shift_m"_a, "yaw_rad"_a, "load_n"_a, py::kw_only(), "interpolation"_a = "pchip",
+          "(status, outputs): 'ok' and the outputs in output_names' order, or 'out of range', "
+          "'topology change' (evaluate directly) or 'failed case' and None.");
+}
+
 }  // namespace
 
 PYBIND11_MODULE(_fastnorm, m) {
@@ -875,4 +955,5 @@ PYBIND11_MODULE(_fastnorm, m) {
   bind_tangential(m);
   bind_case_files(m);
   bind_wheelset(m);
+  bind_tables(m);
 }

@@ -4,7 +4,8 @@ pressure_map draws pressures with the true aspect ratio dx : dy, axes in mm alon
 rolling direction x and the lateral y, and a colour bar in MPa. compare sets a reduced
 solver's answer beside NORM's: both maps with NORM's contact outline over the reduced one,
 the centre-strip pressure profiles, and the difference. traction_map draws a tangential
-answer: the adhesion and slip areas and the traction vectors on the rail. Figures are made
+answer: the adhesion and slip areas and the traction vectors on the rail. table_slices draws
+a contact table (fastnorm.tables.open) against the lateral shift, one line per yaw. Figures are made
 without pyplot
 (matplotlib.figure.Figure), so they work headless and in threads; save them with
 figure.savefig(path) or give path=.
@@ -14,7 +15,7 @@ import numpy as np
 from matplotlib.figure import Figure
 from matplotlib.lines import Line2D
 
-__all__ = ["centre_strip", "compare", "contact_outline", "extent_mm", "pressure_map", "traction_map"]
+__all__ = ["centre_strip", "compare", "contact_outline", "extent_mm", "pressure_map", "table_slices", "traction_map"]
 
 
 def extent_mm(grid):
@@ -163,3 +164,33 @@ def traction_map(grid, tangential, ax=None, title=None, every=1, path=None):
     if path is not None:
         ax.figure.savefig(path)
     return ax
+
+
+def table_slices(dataset, pair=0, load=0, wheel="left", path=None):
+    """A contact table's slices for one pair, load and wheel against the lateral shift, one line
+    per yaw: the normal force, the contact angle and the largest pressure of each patch (tread
+    solid, flange dashed; cases not computed or not converged left out). dataset: what
+    fastnorm.tables.open returns; pair and load by position. Returns the Figure."""
+    view = dataset.isel(pair=pair, load=load).sel(wheel=wheel)
+    usable = (view["done"] & (view["status"] == 1)).values
+    y_mm = view["y"].values * 1e3
+    figure = Figure(figsize=(8, 9), layout="constrained")
+    panels = figure.subplots(3, 1, sharex=True)
+    quantities = (("normal_force", 1e-3, "normal force (kN)"), ("contact_angle", 1.0, "contact angle (rad)"),
+                  ("max_pressure", 1e-6, "largest pressure (MPa)"))
+    colours = [f"C{k}" for k in range(view.sizes["yaw"])]
+    for ax, (name, scale, label) in zip(panels, quantities):
+        for k, yaw in enumerate(view["yaw"].values):
+            for patch, style in ((0, "-"), (1, "--")):
+                values = np.where(usable[k], view[name].isel(yaw=k, patch=patch).values * scale, np.nan)
+                ax.plot(y_mm, values, style, color=colours[k],
+                        label=f"yaw {yaw * 1e3:g} mrad" if patch == 0 else None)
+        ax.set_ylabel(label)
+        ax.grid(True, alpha=0.3)
+    panels[0].legend(fontsize="small")
+    panels[0].set_title(f"{view['pair'].item()}, load {view['load'].item() / 1e3:g} kN, {wheel} wheel "
+                        "(tread solid, flange dashed)")
+    panels[-1].set_xlabel("wheelset lateral shift y (mm)")
+    if path is not None:
+        figure.savefig(path)
+    return figure

@@ -1,0 +1,120 @@
+"""Contact tables, measured (docs/tables.md §6, docs/performance.md §10): the throughput of a
+sweep on two workers against one, and the accuracy of table lookups at cell midpoints against
+direct evaluation. A benchmark, not a test: it prints figures.
+
+    python3 table_benchmark.py throughput [--repeats 3] [--elements 30]
+    python3 table_benchmark.py accuracy [--queries 300] [--elements 40] [--store DIR]
+
+throughput: 400 equilibria (y -6…6 mm, 4 yaws, one load, CG) built serially in this process,
+by a process pool of two workers, by a Dask LocalCluster of two single-thread workers started
+by the build (its start-up timed) and by the same on a cluster already running (as with
+--scheduler-file), interleaved, each into a new store; medians of the wall times and their
+ratios to serial.
+
+accuracy: a table over y -6…4 mm by 0.25 mm and 4…7 mm by 0.05 mm (the flange), yaw 0, 4,
+8 mrad, loads 150, 200, 250 kN (CG); at random cell midpoints in all three axes a direct
+equilibrium beside the PCHIP and multilinear lookups; per region (tread y < 4 mm, flange)
+the largest, 95th-percentile and median differences: normal force per patch in units of the
+table's largest normal force, contact angle in rad, largest pressure relative. Midpoints whose
+cell the topology guard refuses are counted, not compared.
+"""
+
+import argparse
+import os
+import shutil
+import tempfile
+import time
+
+import numpy as np
+
+import fastnorm
+from fastnorm import tables
+
+
+def throughput(repeats, elements):
+    spec = {"lateral_shift_m": [float(y) for y in np.linspace(-6e-3, 6e-3, 100)], "yaw_rad": [0.0, 2e-3, 4e-3, 6e-3],
+            "load_n": [2e5], "solver": "cg", "elements": elements, "chunk_size": 10}
+    running = tables.make_executor("dask", workers=2)
+    ways = {"serial": dict(executor="serial"), "process2": dict(executor="process", workers=2),
+            "dask2": dict(executor="dask", workers=2), "dask2_running": dict(executor=running)}
+    seconds = {name: [] for name in ways}
+    folder = tempfile.mkdtemp(prefix="fastnorm-table-bench-")
+    try:
+        for repeat in range(repeats):
+            for name, how in ways.items():
+                store = os.path.join(folder, f"{name}-{repeat}")
+                start = time.perf_counter()
+                tables.build(spec, store, progress=False, **how)
+                seconds[name].append(time.perf_counter() - start)
+    finally:
+        running.close()
+        shutil.rmtree(folder)
+    serial = np.median(seconds["serial"])
+    print(f"throughput cases=400 elements={elements} repeats={repeats} cores={os.cpu_count()}")
+    for name, values in seconds.items():
+        print(f"  {name}: median_s={np.median(values):.2f} ratio_to_serial={np.median(values) / serial:.3f} "
+              f"spread={max(values) / min(values):.2f}")
+
+
+def accuracy(queries, elements, store):
+    spec = {"lateral_shift_m": [{"start": -6e-3, "stop": 4e-3, "step": 0.25e-3},
+                                {"start": 4e-3, "stop": 7e-3, "step": 0.05e-3}],
+            "yaw_rad": [0.0, 4e-3, 8e-3], "load_n": [1.5e5, 2e5, 2.5e5], "solver": "cg", "elements": elements,
+            "chunk_size": 20}
+    store = store or tempfile.mkdtemp(prefix="fastnorm-table-accuracy-")
+    tables.build(spec, store, executor="process", workers=2, progress=False)
+    table = tables.contact_table(store)
+    canonical = tables.read_spec(store)
+    axes = canonical["lateral_shift_m"], canonical["yaw_rad"], canonical["load_n"]
+    names = table.output_names
+    _, arrays = tables.load_arrays(store)
+    largest_force = np.nanmax(arrays["patch_values"][..., 0])
+    model = fastnorm.WheelsetContact(solver="cg", elements=elements)
+    rng = np.random.default_rng(1)
+    differences = {(region, how): {"normal_force": [], "contact_angle": [], "max_pressure": []}
+                   for region in ("tread", "flange") for how in ("pchip", "multilinear")}
+    guarded = 0
+    for _ in range(queries):
+        i, k, m = (int(rng.integers(len(axis) - 1)) for axis in axes)
+        y, yaw, load = ((axis[n] + axis[n + 1]) / 2 for axis, n in zip(axes, (i, k, m)))
+        looked_up = {how: table.lookup(0, y, yaw, load, interpolation=how) for how in ("pchip", "multilinear")}
+        if looked_up["pchip"][0] != "ok":
+            guarded += 1
+            continue
+        model.reset()
+        direct = model.equilibrium(load_n=load, lateral_shift_m=y, yaw_rad=yaw)
+        if direct.status != "converged":
+            print(f"  direct equilibrium at y={y:.6g} yaw={yaw:.3g} load={load:.6g}: {direct.status}")
+            continue
+        region = "tread" if y < 4e-3 else "flange"
+        for how, (_, outputs) in looked_up.items():
+            for w, wheel in enumerate(tables.WHEELS):
+                for p, patch in enumerate(direct.wheels[w].patches[:tables.PATCHES]):
+                    d = differences[(region, how)]
+                    at = {name: outputs[names.index(f"{name}_{wheel}{p}")] for name in d}
+                    d["normal_force"].append(abs(at["normal_force"] - patch.normal_force_n) / largest_force)
+                    d["contact_angle"].append(abs(at["contact_angle"] - patch.contact_angle_rad))
+                    d["max_pressure"].append(abs(at["max_pressure"] / patch.max_pressure_pa - 1))
+    print(f"accuracy queries={queries} elements={elements} guarded={guarded} largest_force_n={largest_force:.6g}")
+    for (region, how), d in differences.items():
+        for name, values in d.items():
+            print(f"  {region} {how} {name}: patches={len(values)} max={max(values):.3g} "
+                  f"p95={np.percentile(values, 95):.3g} median={np.median(values):.3g}")
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("what", choices=["throughput", "accuracy"])
+    parser.add_argument("--repeats", type=int, default=3)
+    parser.add_argument("--queries", type=int, default=300)
+    parser.add_argument("--elements", type=int, default=None, help="default 30 (throughput), 40 (accuracy)")
+    parser.add_argument("--store", default=None, help="accuracy: build into (or reuse) this store")
+    args = parser.parse_args()
+    if args.what == "throughput":
+        throughput(args.repeats, args.elements or 30)
+    else:
+        accuracy(args.queries, args.elements or 40, args.store)
+
+
+if __name__ == "__main__":
+    main()

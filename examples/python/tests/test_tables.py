@@ -1,0 +1,220 @@
+"""Contact tables (fastnorm.tables, docs/tables.md): a sweep that survives a dead worker and a
+dead client, equal bit for bit to a serial run whatever the executor; the store's spec rules;
+the exports (netCDF with units, the ContactTable file, text) against the store's numbers."""
+
+import os
+import pathlib
+import shutil
+import subprocess
+import sys
+import time
+
+import numpy as np
+import pytest
+
+import fastnorm
+from fastnorm import tables
+
+# 400 equilibria (y -6…6 mm, 4 yaws, one load) in chunks of 10, as issue 30 sets the check.
+SPEC = {
+    "kind": "equilibrium",
+    "lateral_shift_m": [float(y) for y in np.linspace(-6e-3, 6e-3, 100)],
+    "yaw_rad": [0.0, 2e-3, 4e-3, 6e-3],
+    "load_n": [2e5],
+    "solver": "cg",
+    "elements": 20,
+    "chunk_size": 10,
+}
+
+
+def shard_bytes(store):
+    folder = pathlib.Path(store) / tables.SHARDS
+    return {path.name: path.read_bytes() for path in sorted(folder.iterdir())}
+
+
+def no_partial_files(store):
+    return not any(path.name.startswith(".") for path in pathlib.Path(store).rglob("*"))
+
+
+@pytest.fixture(scope="module")
+def serial_store(tmp_path_factory):
+    store = tmp_path_factory.mktemp("tables") / "serial"
+    written = tables.build(SPEC, str(store), executor="serial", progress=False)
+    assert written == 40
+    return store
+
+
+def test_the_serial_table_is_complete_and_converged(serial_store):
+    canonical, arrays = tables.load_arrays(str(serial_store))
+    assert arrays["done"].all()
+    assert np.all(arrays["status"] == tables.STATUS_CODES["converged"])
+    # Every equilibrium carries its load (the equilibrium's force tolerance: 1e-6 relative).
+    vertical_force = arrays["case_values"][..., 2]
+    assert np.all(np.abs(vertical_force / 2e5 - 1) < 1e-6)
+    assert np.all(arrays["patch_count"] >= 1)
+
+
+def test_a_worker_killed_mid_sweep_costs_its_chunk_only(serial_store, tmp_path, monkeypatch):
+    marker = tmp_path / "worker-died"
+    # The worker that reaches chunk 16 (40 % of the 40) dies there; dask runs it elsewhere.
+    monkeypatch.setenv("FASTNORM_TABLE_FAULT", f"worker-exit-at=16:{marker}")
+    store = tmp_path / "dask"
+    written = tables.build(SPEC, str(store), executor="dask", workers=2, progress=False)
+    assert marker.exists()
+    assert written == 40
+    assert shard_bytes(store) == shard_bytes(serial_store)
+    assert no_partial_files(store)
+
+
+def test_a_process_pool_broken_by_a_dead_worker_is_replaced(serial_store, tmp_path, monkeypatch):
+    marker = tmp_path / "worker-died"
+    monkeypatch.setenv("FASTNORM_TABLE_FAULT", f"worker-exit-at=16:{marker}")
+    store = tmp_path / "processes"
+    assert tables.build(SPEC, str(store), executor="process", workers=2, progress=False) == 40
+    assert marker.exists()
+    assert shard_bytes(store) == shard_bytes(serial_store)
+
+
+def test_a_killed_client_loses_nothing_written_and_resumes_with_the_missing_chunks(serial_store, tmp_path):
+    spec = tmp_path / "spec.json"
+    spec.write_text(__import__("json").dumps(SPEC))
+    store = tmp_path / "resumed"
+    environment = dict(os.environ, FASTNORM_TABLE_FAULT="client-exit-after=20")
+    killed = subprocess.run([sys.executable, "-B", "-m", "fastnorm.tables", "build", str(spec), str(store),
+                             "--executor", "process", "--workers", "2"], env=environment, capture_output=True)
+    assert killed.returncode == 19, killed.stderr.decode()
+    assert len(shard_bytes(store)) == 20
+    canonical = tables.canonical_spec(str(spec))
+    assert len(tables.missing_chunks(str(store), canonical)) == 20
+    # Resuming submits only the 20 missing chunks, and the store is the serial run's.
+    assert tables.build(str(spec), str(store), executor="process", workers=2, progress=False) == 20
+    assert shard_bytes(store) == shard_bytes(serial_store)
+    assert no_partial_files(store)
+    assert tables.build(str(spec), str(store), executor="serial", progress=False) == 0
+
+
+def test_a_cluster_started_from_a_scheduler_file_gives_the_same_table(serial_store, tmp_path):
+    scheduler_file = tmp_path / "scheduler.json"
+    dask = shutil.which("dask-scheduler"), shutil.which("dask-worker")
+    assert all(dask), "dask-scheduler and dask-worker (python3-distributed) must be installed"
+    started = [subprocess.Popen([dask[0], "--scheduler-file", str(scheduler_file), "--port", "0",
+                                 "--dashboard-address", ":0"], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)]
+    try:
+        for _ in range(600):
+            if scheduler_file.exists():
+                break
+            time.sleep(0.05)
+        for _ in range(2):
+            started.append(subprocess.Popen([dask[1], "--scheduler-file", str(scheduler_file), "--nthreads", "1",
+                                             "--nworkers", "1", "--dashboard-address", ":0"],
+                                            stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL))
+        import distributed
+        with distributed.Client(scheduler_file=str(scheduler_file)) as client:
+            client.wait_for_workers(2, timeout=120)
+        store = tmp_path / "cluster"
+        written = tables.build(SPEC, str(store), executor="dask", scheduler_file=str(scheduler_file), progress=False)
+        assert written == 40
+        assert shard_bytes(store) == shard_bytes(serial_store)
+    finally:
+        for process in reversed(started):
+            process.terminate()
+        for process in started:
+            process.wait(timeout=60)
+
+
+SMALL = dict(SPEC, lateral_shift_m=[-2e-3, 0.0, 2e-3], yaw_rad=[0.0, 4e-3], chunk_size=4)
+
+
+def test_a_store_refuses_another_spec_and_takes_an_added_pair(tmp_path):
+    store = str(tmp_path / "store")
+    first = dict(SMALL, pairs=[{"name": "A"}])
+    assert tables.build(first, store, executor="serial", progress=False) == 2
+    before = shard_bytes(store)
+    with pytest.raises(ValueError, match="another spec"):
+        tables.build(dict(first, elements=24), store, executor="serial", progress=False)
+    with pytest.raises(ValueError, match="pairs the spec lacks"):
+        tables.build(dict(first, pairs=[{"name": "B"}]), store, executor="serial", progress=False)
+    # Adding a pair computes that pair's chunks only; the first pair's shards stay as they were.
+    assert tables.build(dict(first, pairs=[{"name": "A"}, {"name": "B"}]), store, executor="serial",
+                        progress=False) == 2
+    after = shard_bytes(store)
+    assert len(after) == 4 and all(after[name] == content for name, content in before.items())
+    dataset = tables.open(store)
+    assert list(dataset["pair"].values) == ["A", "B"]
+    # The same built-in profiles under two names: the same numbers.
+    np.testing.assert_array_equal(dataset["normal_force"].sel(pair="A"), dataset["normal_force"].sel(pair="B"))
+
+
+def test_profile_files_travel_with_the_tasks(tmp_path):
+    folder = pathlib.Path(os.environ.get("FASTNORM_PROFILES_DIR") or
+                          pathlib.Path(__file__).resolve().parents[3].parent / "shared" / "profiles")
+    wheel, rail = folder / "MBench_S1002_v3.prw", folder / "MBench_UIC60_v3.prr"
+    if not wheel.exists():
+        if os.environ.get("FASTNORM_REQUIRE_SHARED"):
+            pytest.fail(f"{wheel} is absent (FASTNORM_REQUIRE_SHARED is set)")
+        pytest.skip(f"{wheel} is absent")
+    spec = dict(SMALL, pairs=[{"name": "Manchester", "wheel": str(wheel), "rail": str(rail)}])
+    store = str(tmp_path / "files")
+    assert tables.build(spec, store, executor="process", workers=2, progress=False) == 2
+    # The same pair evaluated here directly from the files.
+    model = fastnorm.WheelsetContact(solver="cg", elements=20, wheel_profile=str(wheel), rail_profile=str(rail))
+    found = model.equilibrium(load_n=2e5, lateral_shift_m=2e-3, yaw_rad=4e-3)
+    dataset = tables.open(store)
+    assert dataset["vertical"].sel(pair="Manchester", load=2e5, yaw=4e-3, y=2e-3).item() == found.pose.vertical_m
+
+
+def test_exports_carry_the_store_numbers_and_units(serial_store, tmp_path):
+    import netCDF4
+    netcdf = tmp_path / "table.nc"
+    tables.export(str(serial_store), str(netcdf))
+    with netCDF4.Dataset(netcdf) as read:
+        for name, variable in read.variables.items():
+            assert "units" in variable.ncattrs() or name in ("pair", "wheel"), name
+        assert read["normal_force"].dimensions == ("pair", "load", "yaw", "y", "wheel", "patch")
+    dataset = tables.open(str(serial_store))
+    _, arrays = tables.load_arrays(str(serial_store))
+
+    binary = tmp_path / "table.fntable"
+    tables.export(str(serial_store), str(binary))
+    table = fastnorm.ContactTable.read(str(binary))
+    column = table.output_names.index("normal_force_left0")
+    topology = tables.topology_codes(arrays["status"], arrays["patch_count"])
+    # At a node of solved cases both interpolations give the store's number exactly.
+    for k, yaw in enumerate(SPEC["yaw_rad"]):
+        for i in (3, 50, 77):
+            y = SPEC["lateral_shift_m"][i]
+            expected = dataset["normal_force"].sel(yaw=yaw, y=y, wheel="left", patch=0, load=2e5).item()
+            for how in ("multilinear", "pchip"):
+                status, outputs = table.lookup(0, y, yaw, 2e5, interpolation=how)
+                if topology[0, 0, k, i] < 0:
+                    assert status != "ok"
+                    continue
+                if status == "ok":  # a node belongs to the cell above it, which may change topology
+                    assert outputs[column] == expected
+
+    text = tmp_path / "text"
+    tables.export(str(serial_store), str(text))
+    (written,) = list(text.iterdir())
+    rows = np.loadtxt(written)
+    assert rows.shape[0] == 400
+    np.testing.assert_array_equal(rows[:, 3], arrays["case_values"][0, 0, :, :, 0].reshape(-1))
+
+
+def test_status_reports_a_partial_store(tmp_path, capsys):
+    store = str(tmp_path / "partial")
+    tables.build(SMALL, store, executor="serial", progress=False)
+    os.remove(next(iter(pathlib.Path(store, tables.SHARDS).iterdir())))
+    figures = tables.status(store)
+    assert figures["chunks"] == 1 and figures["total_chunks"] == 2 and figures["total_cases"] == 6
+    assert "chunks 1/2" in capsys.readouterr().out
+    assert not tables.open(store)["done"].values.all()
+
+
+def test_table_slices_are_drawn(serial_store, output_dir):
+    from fastnorm import plot
+    path = output_dir / "table_slices.png"
+    figure = plot.table_slices(tables.open(str(serial_store)), wheel="right", path=str(path))
+    assert path.stat().st_size > 10000
+    lines = figure.axes[0].get_lines()
+    assert len(lines) == 2 * len(SPEC["yaw_rad"])  # tread and flange per yaw
+    np.testing.assert_allclose(lines[0].get_xdata(), np.array(SPEC["lateral_shift_m"]) * 1e3)
