@@ -218,3 +218,24 @@ def test_table_slices_are_drawn(serial_store, output_dir):
     lines = figure.axes[0].get_lines()
     assert len(lines) == 2 * len(SPEC["yaw_rad"])  # tread and flange per yaw
     np.testing.assert_allclose(lines[0].get_xdata(), np.array(SPEC["lateral_shift_m"]) * 1e3)
+
+
+def test_the_guard_refuses_the_cell_of_flange_onset(tmp_path):
+    # Past y = 6.25 mm the equilibrium of S1002 on UIC60 at 200 kN is flange climb (CG, 20
+    # elements): the cell that spans the onset is refused, the cells beyond hold failed cases.
+    spec = dict(SMALL, lateral_shift_m=[{"start": 5.5e-3, "stop": 7.5e-3, "step": 0.25e-3}], yaw_rad=[0.0, 4e-3])
+    store = str(tmp_path / "onset")
+    tables.build(spec, store, executor="serial", progress=False)
+    _, arrays = tables.load_arrays(store)
+    status = arrays["status"][0, 0]
+    climbing = status == tables.STATUS_CODES["flange climb"]
+    assert climbing.any() and not climbing.all()
+    onset = int(np.argmax(climbing[0]))  # the first node of flange climb at yaw 0
+    nodes = tables.read_spec(store)["lateral_shift_m"]
+    table = tables.contact_table(store)
+    for how in ("multilinear", "pchip"):
+        assert table.lookup(0, 0.5 * (nodes[onset - 2] + nodes[onset - 1]), 2e-3, 2e5, interpolation=how)[0] == "ok"
+        assert table.lookup(0, 0.5 * (nodes[onset - 1] + nodes[onset]), 2e-3, 2e5,
+                            interpolation=how) == ("topology change", None)
+        assert table.lookup(0, 0.5 * (nodes[onset] + nodes[onset + 1]), 2e-3, 2e5, interpolation=how)[0] in (
+            "failed case", "topology change")
