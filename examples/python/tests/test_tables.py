@@ -169,7 +169,7 @@ def test_exports_carry_the_store_numbers_and_units(serial_store, tmp_path):
     tables.export(str(serial_store), str(netcdf))
     with netCDF4.Dataset(netcdf) as read:
         for name, variable in read.variables.items():
-            assert "units" in variable.ncattrs() or name in ("pair", "wheel"), name
+            assert "units" in variable.ncattrs(), name
         assert read["normal_force"].dimensions == ("pair", "load", "yaw", "y", "wheel", "patch")
     dataset = tables.open(str(serial_store))
     _, arrays = tables.load_arrays(str(serial_store))
@@ -239,3 +239,10 @@ def test_the_guard_refuses_the_cell_of_flange_onset(tmp_path):
                             interpolation=how) == ("topology change", None)
         assert table.lookup(0, 0.5 * (nodes[onset] + nodes[onset + 1]), 2e-3, 2e5, interpolation=how)[0] in (
             "failed case", "topology change")
+
+
+def test_progress_is_shown_as_plain_lines_off_a_terminal(tmp_path, capsys):
+    tables.build(SMALL, str(tmp_path / "progress"), executor="serial")
+    printed = capsys.readouterr().err
+    assert "chunks 1/2  cases 4/6" in printed and "chunks 2/2  cases 6/6" in printed
+    assert "\r" not in printed  # no bar when stderr is not a terminal

@@ -163,10 +163,6 @@ def spec_text(canonical):
     return json.dumps(canonical, sort_keys=True, separators=(",", ":"))
 
 
-def spec_hash(canonical):
-    return hashlib.sha256(spec_text(canonical).encode()).hexdigest()
-
-
 def case_shape(canonical):
     """(pairs, loads, yaws, shifts): the cases in the order chunks cut them (y fastest)."""
     return (len(canonical["pairs"]), len(canonical["load_n"]), len(canonical["yaw_rad"]),
@@ -648,11 +644,12 @@ def open(store):  # noqa: A001 - fastnorm.tables.open, as xarray.open_dataset
     for k, (name, unit, long_name, _) in enumerate(PATCH_OUTPUTS):
         data[name] = (patch_dims, arrays["patch_values"][..., k], {"long_name": long_name, "units": unit})
     coords = {
-        "pair": ("pair", [p["name"] for p in canonical["pairs"]], {"long_name": "wheel/rail profile pair"}),
+        "pair": ("pair", [p["name"] for p in canonical["pairs"]], {"long_name": "wheel/rail profile pair",
+                                                                  "units": "1"}),
         "load": ("load", canonical["load_n"], {"long_name": "vertical load on the wheelset", "units": "N"}),
         "yaw": ("yaw", canonical["yaw_rad"], {"long_name": "wheelset yaw angle", "units": "rad"}),
         "y": ("y", canonical["lateral_shift_m"], {"long_name": "wheelset lateral shift", "units": "m"}),
-        "wheel": ("wheel", list(WHEELS)),
+        "wheel": ("wheel", list(WHEELS), {"long_name": "wheel of the wheelset", "units": "1"}),
         "patch": ("patch", np.arange(PATCHES), {"long_name": "patch of the wheel, tread first", "units": "1"}),
     }
     dataset = xr.Dataset(data, coords=coords)
