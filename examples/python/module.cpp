@@ -272,6 +272,7 @@ struct PyPatch {
   py::array_t<double> reference, e_x, t_s, normal;  // the grid's frame
   py::array_t<double> centre, force, moment, pressure_centre;
   double normal_force = 0, contact_angle = 0, approach = 0, stiffness = 0, profile_y = 0, max_pressure = 0;
+  double rolling_radius = 0;  // m, the wheel's radius at profile_y
   Eigen::Index contact_elements = 0;
   bool flange_climb = false;
   std::string history;
@@ -300,6 +301,7 @@ PyPatch to_python(const wr::PatchContact& contact, const wr::Wheelset& wheelset)
   out.approach = contact.approach;
   out.stiffness = contact.stiffness;
   out.profile_y = contact.profile_y;
+  out.rolling_radius = wheelset.radius(contact.patch.frame.side, contact.profile_y).value;
   out.max_pressure = contact.max_pressure;
   out.flange_climb = wheelset.at_flange_climb(contact.profile_y);
   out.history = wr::to_string(contact.history);
@@ -722,6 +724,8 @@ void bind_wheelset(py::module_& m) {
       .def_readonly("approach_m", &PyPatch::approach, "the rigid interpenetration (m)")
       .def_readonly("stiffness_n_per_m", &PyPatch::stiffness, "dFn/d(approach) (N/m); NaN when not asked for")
       .def_readonly("profile_y_m", &PyPatch::profile_y, "wheel profile coordinate y_w of the reference point (m)")
+      .def_readonly("rolling_radius_m", &PyPatch::rolling_radius,
+                    "the wheel's rolling radius at profile_y_m: the nominal radius plus the profile there (m)")
       .def_readonly("max_pressure_pa", &PyPatch::max_pressure)
       .def_readonly("flange_climb", &PyPatch::flange_climb, "the reference point is on the flange's steepest flank "
                                                             "or beyond")

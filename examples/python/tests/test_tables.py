@@ -52,6 +52,13 @@ def test_the_serial_table_is_complete_and_converged(serial_store):
     vertical_force = arrays["case_values"][..., 2]
     assert np.all(np.abs(vertical_force / 2e5 - 1) < 1e-6)
     assert np.all(arrays["patch_count"] >= 1)
+    # The rolling radii: the nominal 0.45 m at the taping line (y = 0 holds the contact near
+    # it), and a difference right − left that grows with the shift (the profiles' conicity).
+    radius = tables.open(str(serial_store))["rolling_radius"].isel(pair=0, load=0, yaw=0, patch=0)
+    centre = int(np.argmin(np.abs(np.array(SPEC["lateral_shift_m"]))))
+    assert abs(radius.sel(wheel="left").values[centre] - 0.45) < 1e-3
+    difference = (radius.sel(wheel="right") - radius.sel(wheel="left")).values
+    assert np.all(np.diff(difference) > 0)
 
 
 def test_a_worker_killed_mid_sweep_costs_its_chunk_only(serial_store, tmp_path, monkeypatch):

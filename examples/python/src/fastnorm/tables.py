@@ -59,6 +59,7 @@ PATCH_OUTPUTS = (
     ("contact_z", "m", "vertical position of the contact reference point, track frame (z down)",
      lambda p: p.centre_m[2]),
     ("profile_y", "m", "wheel profile coordinate of the contact reference point", lambda p: p.profile_y_m),
+    ("rolling_radius", "m", "wheel rolling radius at the contact reference point", lambda p: p.rolling_radius_m),
     ("max_pressure", "Pa", "largest pressure", lambda p: p.max_pressure_pa),
     ("area", "m2", "contact area", lambda p: p.contact_elements * p.grid.dx_m * p.grid.dy_m),
     ("length", "m", "extent of the contact area along the rolling direction", lambda p: _extent(p, 1, p.grid.dx_m)),
