@@ -25,6 +25,10 @@ module fastnorm_c
   integer(c_int), parameter :: fastnorm_equilibrium_not_solved = 0, fastnorm_equilibrium_converged = 1, &
                                fastnorm_equilibrium_lost_contact = 2, fastnorm_equilibrium_not_converged = 3, &
                                fastnorm_equilibrium_solver_failed = 4, fastnorm_equilibrium_flange_climb = 5
+  ! Contact tables: the interpolations, and what a lookup found.
+  integer(c_int), parameter :: fastnorm_table_multilinear = 0, fastnorm_table_pchip = 1
+  integer(c_int), parameter :: fastnorm_table_found = 0, fastnorm_table_out_of_range = 1, &
+                               fastnorm_table_topology_change = 2, fastnorm_table_failed_case = 3
 
   type, bind(c) :: fastnorm_grid
     integer(c_int) :: mx, my
@@ -285,6 +289,42 @@ module fastnorm_c
     pure integer(c_size_t) function c_strlen(text) bind(c, name="strlen")
       import :: c_ptr, c_size_t
       type(c_ptr), value :: text
+    end function
+    integer(c_int) function fastnorm_table_read(path, table) bind(c)
+      import :: c_int, c_char, c_ptr
+      character(kind=c_char), intent(in) :: path(*)
+      type(c_ptr), intent(out) :: table
+    end function
+    subroutine fastnorm_table_destroy(table) bind(c)
+      import :: c_ptr
+      type(c_ptr), value :: table
+    end subroutine
+    integer(c_int) function fastnorm_table_info(table, pairs, outputs) bind(c)
+      import :: c_int, c_ptr
+      type(c_ptr), value :: table
+      integer(c_int), intent(out) :: pairs, outputs
+    end function
+    integer(c_int) function fastnorm_table_output_index(table, name, index) bind(c)
+      import :: c_int, c_char, c_ptr
+      type(c_ptr), value :: table
+      character(kind=c_char), intent(in) :: name(*)
+      integer(c_int), intent(out) :: index
+    end function
+    ! name and unit: C strings owned by the table (fastnorm_string reads them).
+    integer(c_int) function fastnorm_table_output_name(table, index, name, unit) bind(c)
+      import :: c_int, c_ptr
+      type(c_ptr), value :: table
+      integer(c_int), value :: index
+      type(c_ptr), intent(out) :: name, unit
+    end function
+    integer(c_int) function fastnorm_table_lookup(table, pair, y, yaw, load, interpolation, out, found) bind(c)
+      import :: c_int, c_ptr, c_double
+      type(c_ptr), value :: table
+      integer(c_int), value :: pair
+      real(c_double), value :: y, yaw, load
+      integer(c_int), value :: interpolation
+      real(c_double), intent(inout) :: out(*)
+      integer(c_int), intent(out) :: found
     end function
   end interface
 

@@ -74,8 +74,49 @@ program user_routine
   end do
   call fastnorm_wheelset_destroy(model)
   call creep_forces_of_a_hertz_contact()
+  call table_lookup()
 
 contains
+
+  ! A contact table written here from docs/tables.md's description of the file (stream
+  ! access), read and looked up through the API: y = (-1, 0, 2) mm, yaw = (0, 10) mrad, one
+  ! load, one output fn = 1000 + 2e5 y + 3e3 yaw (N), which both interpolations give back.
+  subroutine table_lookup()
+    real(c_double), parameter :: shifts(3) = [-1d-3, 0d0, 2d-3], yaws(2) = [0d0, 1d-2], table_load = 1d5
+    character(kind=c_char, len=*), parameter :: path = "user_routine_test.fntable" // c_null_char
+    character(kind=c_char, len=*), parameter :: fn_name = "fn_n" // c_null_char
+    type(c_ptr) :: table, name, unit
+    real(c_double) :: out(1)
+    integer(c_int) :: pairs, outputs, index, found, interpolation
+    integer :: file, i, j
+    open(newunit=file, file=path(1:len(path) - 1), access="stream", form="unformatted", status="replace")
+    write(file) "FNTABLE" // c_null_char
+    write(file) 1_c_int32_t, 1_c_int32_t, 3_c_int32_t, 2_c_int32_t, 1_c_int32_t, 1_c_int32_t
+    write(file) shifts, yaws, table_load
+    write(file) 11_c_int32_t, "S1002/UIC60", 4_c_int32_t, "fn_n", 1_c_int32_t, "N"
+    write(file) ((1000 + 2d5 * shifts(i) + 3d3 * yaws(j), i = 1, 3), j = 1, 2)
+    write(file) (1_c_int32_t, i = 1, 6)
+    close(file)
+
+    if (fastnorm_table_read(path, table) /= fastnorm_ok) error stop "table: " // fastnorm_string(fastnorm_last_error())
+    if (fastnorm_table_info(table, pairs, outputs) /= fastnorm_ok .or. pairs /= 1 .or. outputs /= 1) &
+      error stop "table info"
+    if (fastnorm_table_output_index(table, fn_name, index) /= fastnorm_ok .or. index /= 0) error stop "output index"
+    if (fastnorm_table_output_name(table, 0_c_int, name, unit) /= fastnorm_ok) error stop "output name"
+    if (fastnorm_string(name) /= "fn_n" .or. fastnorm_string(unit) /= "N") error stop "output name or unit"
+    do interpolation = fastnorm_table_multilinear, fastnorm_table_pchip
+      if (fastnorm_table_lookup(table, 0_c_int, -0.4d-3, 3d-3, table_load, interpolation, out, found) /= fastnorm_ok) &
+        error stop "lookup: " // fastnorm_string(fastnorm_last_error())
+      if (found /= fastnorm_table_found) error stop "lookup found nothing"
+      if (abs(out(1) - (1000 + 2d5 * (-0.4d-3) + 3d3 * 3d-3)) > 1d-9) error stop "lookup is not the linear data"
+      if (fastnorm_table_lookup(table, 0_c_int, 3d-3, 3d-3, table_load, interpolation, out, found) /= fastnorm_ok &
+          .or. found /= fastnorm_table_out_of_range) error stop "out of range not reported"
+    end do
+    print '(a, f10.4, a)', "table lookup: fn = ", out(1), " N"
+    call fastnorm_table_destroy(table)
+    open(newunit=file, file=path(1:len(path) - 1), status="old")
+    close(file, status="delete")
+  end subroutine
 
   ! CONTACT's large-spin Hertz example (docs/tangential.md §5): NORM in force control, then
   ! steady rolling; CONTACT's exact answer is Fs = -14940 N, Mz = -48.21 N m, 356 elements in

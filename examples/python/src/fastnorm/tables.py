@@ -192,22 +192,20 @@ def _pair_key(pair):
 # A chunk, on a worker
 
 _models = {}  # (spec hash, pair index) -> WheelsetContact, one per worker process
-_profile_dir = None
 
 
 def _model(canonical, digest, pair_index):
-    global _profile_dir
     key = (digest, pair_index)
     if key not in _models:
         pair = canonical["pairs"][pair_index]
         profiles = {}
         if pair["profiles"] is not None:
-            if _profile_dir is None:
-                _profile_dir = tempfile.mkdtemp(prefix="fastnorm-table-")
+            # WheelsetContact reads files: each profile's text goes to a file named by its hash
+            # (written once per machine, atomically, so that workers may race for it).
             for role, text, suffix in zip(("wheel", "rail"), pair["profiles"], pair["suffixes"]):
-                path = os.path.join(_profile_dir, f"{pair['sha256'][:16]}-{role}{suffix}")
-                with builtins.open(path, "w", encoding="utf-8") as file:
-                    file.write(text)
+                path = os.path.join(tempfile.gettempdir(), f"fastnorm-profile-{pair['sha256'][:24]}-{role}{suffix}")
+                if not os.path.exists(path):
+                    _write_atomically(path, lambda file, t=text: file.write(t.encode()))
                 profiles[f"{role}_profile"] = path
         _models[key] = WheelsetContact(solver=canonical["solver"], elements=canonical["elements"], **profiles)
     return _models[key]
