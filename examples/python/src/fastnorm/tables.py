@@ -267,11 +267,18 @@ def _failure_path(store, canonical, chunk):
     return os.path.join(store, FAILURES, f"{_pair_key(canonical['pairs'][pair])}-{number:06d}.txt")
 
 
+def _umask():
+    mask = os.umask(0)
+    os.umask(mask)
+    return mask
+
+
 def _write_atomically(path, write):
     """Writes through a temporary name in the same folder, renamed into place when complete."""
     folder = os.path.dirname(path)
     handle, temporary = tempfile.mkstemp(dir=folder, prefix=".partial-", suffix=os.path.splitext(path)[1])
     try:
+        os.chmod(temporary, 0o666 & ~_umask())  # mkstemp's 0600 would hide a store from a cluster's other users
         with os.fdopen(handle, "wb") as file:
             write(file)
             file.flush()
