@@ -286,10 +286,6 @@ module fastnorm_c
       type(fastnorm_equilibrium), intent(out) :: result
     end function
 
-    pure integer(c_size_t) function c_strlen(text) bind(c, name="strlen")
-      import :: c_ptr, c_size_t
-      type(c_ptr), value :: text
-    end function
     integer(c_int) function fastnorm_table_read(path, table) bind(c)
       import :: c_int, c_char, c_ptr
       character(kind=c_char), intent(in) :: path(*)
@@ -325,6 +321,11 @@ module fastnorm_c
       integer(c_int), value :: interpolation
       real(c_double), intent(inout) :: out(*)
       integer(c_int), intent(out) :: found
+    end function
+
+    pure integer(c_size_t) function c_strlen(text) bind(c, name="strlen")
+      import :: c_ptr, c_size_t
+      type(c_ptr), value :: text
     end function
   end interface
 

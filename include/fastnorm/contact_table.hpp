@@ -124,43 +124,51 @@ class ContactTable {
   TableLookupStatus lookup(std::size_t pair, double lateral_shift_m, double yaw_rad, double load_n,
                            TableInterpolation interpolation, double* out) const {
     FASTNORM_CHECK(pair < pairs(), describe("pair must be below the table's " + std::to_string(pairs()) + " pairs", pair));
-    // Axis order inside: 0 = y (fastest in memory), 1 = yaw, 2 = load.
-    const std::array<const std::vector<double>*, axis_count> nodes{&axes_.lateral_shift_m, &axes_.yaw_rad,
-                                                                    &axes_.load_n};
-    const std::array<double, axis_count> query{lateral_shift_m, yaw_rad, load_n};
-    std::array<std::size_t, axis_count> cell{};
+    Located located{{lateral_shift_m, yaw_rad, load_n}, {}, pair * cases_per_pair()};
     for (std::size_t a = 0; a < axis_count; ++a)
-      if (!locate(*nodes[a], query[a], cell[a])) return TableLookupStatus::out_of_range;
+      if (!locate(axis_nodes(a), located.query[a], located.cell[a])) return TableLookupStatus::out_of_range;
 
-    const std::array<std::size_t, axis_count> stride{1, axes_.lateral_shift_m.size(),
-                                                     axes_.lateral_shift_m.size() * axes_.yaw_rad.size()};
-    const std::size_t first_case = pair * cases_per_pair();
-    const std::int32_t code = topology_[first_case + offset(cell, stride)];
+    const std::int32_t code = topology_[case_at(located, located.cell)];
     // The guard: every corner of the cell has the same code.
     for (std::size_t corner = 1; corner < (std::size_t{1} << axis_count); ++corner) {
-      std::array<std::size_t, axis_count> at = cell;
+      NodeIndex at = located.cell;
       bool exists = true;
       for (std::size_t a = 0; a < axis_count; ++a)
-        if (corner >> a & 1) exists = exists && (at[a] += 1) < nodes[a]->size();
-      if (exists && topology_[first_case + offset(at, stride)] != code) return TableLookupStatus::topology_change;
+        if (corner >> a & 1) exists = exists && (at[a] += 1) < axis_nodes(a).size();
+      if (exists && topology_[case_at(located, at)] != code) return TableLookupStatus::topology_change;
     }
     if (code < 0) return TableLookupStatus::failed_case;
 
     if (interpolation == TableInterpolation::multilinear)
-      interpolate_multilinear(nodes, query, cell, stride, first_case, out);
+      interpolate_multilinear(located, out);
     else
-      interpolate_pchip(nodes, query, cell, stride, first_case, code, out);
+      interpolate_pchip(located, code, out);
     return TableLookupStatus::ok;
   }
 
  private:
+  /// A node per axis: 0 = y (fastest in memory), 1 = yaw, 2 = load.
+  using NodeIndex = std::array<std::size_t, axis_count>;
+
+  /// A query placed in the table: its coordinates, its cell's lower node on each axis, and
+  /// the first case of its pair.
+  struct Located {
+    std::array<double, axis_count> query;
+    NodeIndex cell;
+    std::size_t first_case;
+  };
+
+  const std::vector<double>& axis_nodes(std::size_t a) const {
+    return a == 0 ? axes_.lateral_shift_m : a == 1 ? axes_.yaw_rad : axes_.load_n;
+  }
+
   std::size_t cases_per_pair() const {
     return axes_.lateral_shift_m.size() * axes_.yaw_rad.size() * axes_.load_n.size();
   }
 
-  static std::size_t offset(const std::array<std::size_t, axis_count>& at,
-                            const std::array<std::size_t, axis_count>& stride) {
-    return at[0] * stride[0] + at[1] * stride[1] + at[2] * stride[2];
+  /// The case at node `at` of the located query's pair.
+  std::size_t case_at(const Located& located, const NodeIndex& at) const {
+    return located.first_case + at[0] + axes_.lateral_shift_m.size() * (at[1] + axes_.yaw_rad.size() * at[2]);
   }
 
   static void check_axis(const std::vector<double>& axis, const std::string& name) {
@@ -191,25 +199,22 @@ class ContactTable {
     return nodes.size() == 1 ? 0.0 : (x - nodes[cell]) / (nodes[cell + 1] - nodes[cell]);
   }
 
-  void interpolate_multilinear(const std::array<const std::vector<double>*, axis_count>& nodes,
-                               const std::array<double, axis_count>& query,
-                               const std::array<std::size_t, axis_count>& cell,
-                               const std::array<std::size_t, axis_count>& stride, std::size_t first_case,
-                               double* out) const {
+  void interpolate_multilinear(const Located& located, double* out) const {
     std::array<double, axis_count> t{};
-    for (std::size_t a = 0; a < axis_count; ++a) t[a] = fraction(*nodes[a], cell[a], query[a]);
+    for (std::size_t a = 0; a < axis_count; ++a)
+      t[a] = fraction(axis_nodes(a), located.cell[a], located.query[a]);
     const std::size_t n = outputs();
     std::fill(out, out + n, 0.0);
     for (std::size_t corner = 0; corner < (std::size_t{1} << axis_count); ++corner) {
       double weight = 1;
-      std::array<std::size_t, axis_count> at = cell;
+      NodeIndex at = located.cell;
       for (std::size_t a = 0; a < axis_count; ++a) {
         const bool upper = corner >> a & 1;
         weight *= upper ? t[a] : 1 - t[a];
         at[a] += upper;
       }
       if (weight == 0) continue;  // also skips the missing upper node of a one-node axis
-      const double* corner_values = values_.data() + (first_case + offset(at, stride)) * n;
+      const double* corner_values = values_.data() + case_at(located, at) * n;
       for (std::size_t o = 0; o < n; ++o) out[o] += weight * corner_values[o];
     }
   }
@@ -224,28 +229,24 @@ class ContactTable {
   /// cases around the cell gives the derivative estimates; an outer layer of it (one side of
   /// one axis) holding a case of another topology is dropped, so that the derivatives at the
   /// cell's nodes become one-sided there and nothing across a topology change enters.
-  void interpolate_pchip(const std::array<const std::vector<double>*, axis_count>& nodes,
-                         const std::array<double, axis_count>& query,
-                         const std::array<std::size_t, axis_count>& cell,
-                         const std::array<std::size_t, axis_count>& stride, std::size_t first_case, std::int32_t code,
-                         double* out) const {
+  void interpolate_pchip(const Located& located, std::int32_t code, double* out) const {
+    const NodeIndex& cell = located.cell;
     std::array<Stencil, axis_count> full{};
     for (std::size_t a = 0; a < axis_count; ++a) {
-      const std::size_t size = nodes[a]->size();
+      const std::size_t size = axis_nodes(a).size();
       full[a].first = cell[a] > 0 ? cell[a] - 1 : 0;
       full[a].last = size == 1 ? 0 : std::min(cell[a] + 2, size - 1);
     }
     std::array<Stencil, axis_count> kept = full;
     for (std::size_t a = 0; a < axis_count; ++a) {
-      if (full[a].first < cell[a] && !layer_matches(full, a, full[a].first, stride, first_case, code))
-        kept[a].first = cell[a];
+      if (full[a].first < cell[a] && !layer_matches(located, full, a, full[a].first, code)) kept[a].first = cell[a];
       const std::size_t upper = std::min(cell[a] + 1, full[a].last);
-      if (full[a].last > upper && !layer_matches(full, a, full[a].last, stride, first_case, code))
-        kept[a].last = upper;
+      if (full[a].last > upper && !layer_matches(located, full, a, full[a].last, code)) kept[a].last = upper;
     }
 
     std::array<PchipAxis, axis_count> axis{};
-    for (std::size_t a = 0; a < axis_count; ++a) axis[a] = PchipAxis(*nodes[a], kept[a], cell[a], query[a]);
+    for (std::size_t a = 0; a < axis_count; ++a)
+      axis[a] = PchipAxis(axis_nodes(a), kept[a], cell[a], located.query[a]);
 
     // Values along y for every (yaw, load) line of the stencil, then along yaw, then load.
     const std::size_t n = outputs();
@@ -255,9 +256,8 @@ class ContactTable {
       for (std::size_t k = 0; k < axis[2].count; ++k) {
         for (std::size_t j = 0; j < axis[1].count; ++j) {
           std::array<double, 4> along_y{};
-          const double* line = values_.data() + (first_case + axis[0].first * stride[0] +
-                                                 (axis[1].first + j) * stride[1] + (axis[2].first + k) * stride[2]) *
-                                                    n + o;
+          const double* line =
+              values_.data() + case_at(located, {axis[0].first, axis[1].first + j, axis[2].first + k}) * n + o;
           for (std::size_t i = 0; i < axis[0].count; ++i) along_y[i] = line[i * n];
           along_yaw[j] = axis[0].evaluate(along_y);
         }
@@ -268,15 +268,14 @@ class ContactTable {
   }
 
   /// Whether every case of the stencil `box` whose index along axis a is `index` has `code`.
-  bool layer_matches(const std::array<Stencil, axis_count>& box, std::size_t a, std::size_t index,
-                     const std::array<std::size_t, axis_count>& stride, std::size_t first_case,
-                     std::int32_t code) const {
+  bool layer_matches(const Located& located, const std::array<Stencil, axis_count>& box, std::size_t a,
+                     std::size_t index, std::int32_t code) const {
     std::array<Stencil, axis_count> layer = box;
     layer[a] = {index, index};
     for (std::size_t k = layer[2].first; k <= layer[2].last; ++k)
       for (std::size_t j = layer[1].first; j <= layer[1].last; ++j)
         for (std::size_t i = layer[0].first; i <= layer[0].last; ++i)
-          if (topology_[first_case + i * stride[0] + j * stride[1] + k * stride[2]] != code) return false;
+          if (topology_[case_at(located, {i, j, k})] != code) return false;
     return true;
   }
 

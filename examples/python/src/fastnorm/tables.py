@@ -69,6 +69,23 @@ PATCH_OUTPUTS = (
 )
 
 
+def _flat_outputs():
+    """(name, unit) of every output in a ContactTable's order: the case outputs, then each
+    patch output per wheel and patch (name_left0, ...)."""
+    flat = [(name, unit) for name, unit, _, _ in CASE_OUTPUTS]
+    for wheel in WHEELS:
+        for patch in range(PATCHES):
+            flat += [(f"{name}_{wheel}{patch}", unit) for name, unit, _, _ in PATCH_OUTPUTS]
+    return flat
+
+
+def _empty_arrays(cases):
+    """The arrays of `cases` cases as a shard holds them: not computed (status 0, NaN)."""
+    return {"status": np.zeros(cases, np.int8), "patch_count": np.zeros((cases, len(WHEELS)), np.int8),
+            "case_values": np.full((cases, len(CASE_OUTPUTS)), np.nan),
+            "patch_values": np.full((cases, len(WHEELS), PATCHES, len(PATCH_OUTPUTS)), np.nan)}
+
+
 def _extent(patch, axis, size):
     """Elements in contact along one grid axis (1: x, 0: across), times the element size."""
     in_contact = np.asarray(patch.solution.in_contact)
@@ -232,25 +249,20 @@ def compute_chunk(text, pair, number):
     total = int(np.prod(shape))
     first = number * canonical["chunk_size"]
     cases = range(first, min(first + canonical["chunk_size"], total))
-    n = len(cases)
-    status = np.zeros(n, np.int8)
-    patch_count = np.zeros((n, len(WHEELS)), np.int8)
-    case_values = np.full((n, len(CASE_OUTPUTS)), np.nan)
-    patch_values = np.full((n, len(WHEELS), PATCHES, len(PATCH_OUTPUTS)), np.nan)
+    arrays = _empty_arrays(len(cases))
     for row, case in enumerate(cases):
         load, yaw, shift = np.unravel_index(case, shape)
         model = _model(canonical, digest, pair)
         model.reset()  # no history: the same case gives the same numbers in any chunk order
         found = model.equilibrium(load_n=canonical["load_n"][load], lateral_shift_m=canonical["lateral_shift_m"][shift],
                                   yaw_rad=canonical["yaw_rad"][yaw])
-        status[row] = STATUS_CODES[found.status]
-        case_values[row] = [value(found) for _, _, _, value in CASE_OUTPUTS]
+        arrays["status"][row] = STATUS_CODES[found.status]
+        arrays["case_values"][row] = [value(found) for _, _, _, value in CASE_OUTPUTS]
         for w, wheel in enumerate(found.wheels):
-            patch_count[row, w] = len(wheel.patches)
+            arrays["patch_count"][row, w] = len(wheel.patches)
             for p, patch in enumerate(wheel.patches[:PATCHES]):
-                patch_values[row, w, p] = [value(patch) for _, _, _, value in PATCH_OUTPUTS]
-    return {"status": status, "patch_count": patch_count, "case_values": case_values,
-            "patch_values": patch_values}
+                arrays["patch_values"][row, w, p] = [value(patch) for _, _, _, value in PATCH_OUTPUTS]
+    return arrays
 
 
 # ---------------------------------------------------------------------------------------------
@@ -579,6 +591,11 @@ def _count(store, folder):
     return len(_files(store, folder))
 
 
+def _cases_done(store, canonical):
+    return sum(_cases_in(canonical, chunk) for chunk in all_chunks(canonical)
+               if os.path.exists(_shard_path(store, canonical, chunk)))
+
+
 def status(store, stream=None):
     """Prints how far a store is (it may be being built elsewhere): chunks and cases done of
     the total, failures, the rate over the shards' times and the time left at that rate."""
@@ -588,8 +605,7 @@ def status(store, stream=None):
     total_cases = int(np.prod(case_shape(canonical)))
     shards = _files(store, SHARDS)
     failed = _count(store, FAILURES)
-    cases = sum(_cases_in(canonical, chunk) for chunk in all_chunks(canonical)
-                if os.path.exists(_shard_path(store, canonical, chunk)))
+    cases = _cases_done(store, canonical)
     times = sorted(os.path.getmtime(path) for path in shards)
     rate = (len(times) - 1) * canonical["chunk_size"] / (times[-1] - times[0]) if len(times) > 1 and \
         times[-1] > times[0] else float("nan")
@@ -607,11 +623,8 @@ def load_arrays(store):
     shape = case_shape(canonical)
     total = int(np.prod(shape))
     per_pair = int(np.prod(shape[1:]))
-    status_codes = np.zeros(total, np.int8)
-    done = np.zeros(total, bool)
-    patch_count = np.zeros((total, len(WHEELS)), np.int8)
-    case_values = np.full((total, len(CASE_OUTPUTS)), np.nan)
-    patch_values = np.full((total, len(WHEELS), PATCHES, len(PATCH_OUTPUTS)), np.nan)
+    arrays = _empty_arrays(total)
+    arrays["done"] = np.zeros(total, bool)
     size = canonical["chunk_size"]
     for chunk in all_chunks(canonical):
         path = _shard_path(store, canonical, chunk)
@@ -620,15 +633,10 @@ def load_arrays(store):
         with np.load(path) as shard:
             first = chunk[0] * per_pair + chunk[1] * size
             rows = slice(first, first + len(shard["status"]))
-            status_codes[rows], patch_count[rows] = shard["status"], shard["patch_count"]
-            case_values[rows], patch_values[rows] = shard["case_values"], shard["patch_values"]
-            done[rows] = True
-    return canonical, {
-        "status": status_codes.reshape(shape), "done": done.reshape(shape),
-        "patch_count": patch_count.reshape(shape + (len(WHEELS),)),
-        "case_values": case_values.reshape(shape + (len(CASE_OUTPUTS),)),
-        "patch_values": patch_values.reshape(shape + (len(WHEELS), PATCHES, len(PATCH_OUTPUTS))),
-    }
+            for name in shard.files:
+                arrays[name][rows] = shard[name]
+            arrays["done"][rows] = True
+    return canonical, {name: array.reshape(shape + array.shape[1:]) for name, array in arrays.items()}
 
 
 def open(store):  # noqa: A001 - fastnorm.tables.open, as xarray.open_dataset
@@ -676,12 +684,7 @@ def contact_table(store):
     """The store as a fastnorm.ContactTable: the case outputs, then per wheel and patch the patch
     outputs (name_left0 ...); a patch a case lacks reads 0 (its topology code says it is absent)."""
     canonical, arrays = load_arrays(store)
-    names = [name for name, _, _, _ in CASE_OUTPUTS]
-    units = [unit for _, unit, _, _ in CASE_OUTPUTS]
-    for wheel in WHEELS:
-        for patch in range(PATCHES):
-            names += [f"{name}_{wheel}{patch}" for name, _, _, _ in PATCH_OUTPUTS]
-            units += [unit for _, unit, _, _ in PATCH_OUTPUTS]
+    names, units = zip(*_flat_outputs())
     shape = arrays["status"].shape
     patch_part = np.nan_to_num(arrays["patch_values"], nan=0.0).reshape(shape + (-1,))
     values = np.concatenate([arrays["case_values"], patch_part], axis=-1)
@@ -690,7 +693,7 @@ def contact_table(store):
     values = np.where((topology >= 0)[..., None], values, np.nan)
     return ContactTable(lateral_shift_m=canonical["lateral_shift_m"], yaw_rad=canonical["yaw_rad"],
                         load_n=canonical["load_n"], pair_names=[p["name"] for p in canonical["pairs"]],
-                        output_names=names, output_units=units, values=values, topology=topology)
+                        output_names=list(names), output_units=list(units), values=values, topology=topology)
 
 
 def export(store, out):
@@ -709,10 +712,7 @@ def export(store, out):
 def _export_text(store, folder):
     canonical, arrays = load_arrays(store)
     os.makedirs(folder, exist_ok=True)
-    columns = ["y_m", "yaw_rad", "status"] + [f"{n}_{u}" for n, u, _, _ in CASE_OUTPUTS]
-    for wheel in WHEELS:
-        for patch in range(PATCHES):
-            columns += [f"{n}_{wheel}{patch}_{u.replace(' ', '.')}" for n, u, _, _ in PATCH_OUTPUTS]
+    columns = ["y_m", "yaw_rad", "status"] + [f"{name}_{unit.replace(' ', '.')}" for name, unit in _flat_outputs()]
     for p, pair in enumerate(canonical["pairs"]):
         for l, load in enumerate(canonical["load_n"]):
             safe = "".join(c if c.isalnum() or c in "-_." else "_" for c in pair["name"])
