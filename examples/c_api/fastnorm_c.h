@@ -305,10 +305,11 @@ enum {
   FASTNORM_EQUILIBRIUM_FLANGE_CLIMB = 5
 };
 
-/* The equilibrium of this model as it is (its solver, element sizes, grids and starts; its
- * state follows the poses the search evaluates), so that an evaluate at the pose found
- * carries the load to the force tolerance 1e-6; the model then holds its patches
- * (fastnorm_wheelset_patch reads them). */
+/* The equilibrium of this model as it is (its solver, element sizes, grids and starts; every
+ * pose tried is evaluated from the model's state before the call, and the model's state is
+ * then that of the pose returned), so that an evaluate at the pose found carries the load to
+ * the force tolerance 1e-6; the model then holds its patches (fastnorm_wheelset_patch reads
+ * them), also when the search ends not converged (its pose of smallest residual). */
 FASTNORM_C_API int fastnorm_wheelset_equilibrium(fastnorm_wheelset* model, double load, double y, double yaw,
                                                  fastnorm_equilibrium* result);
 

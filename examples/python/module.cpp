@@ -856,7 +856,9 @@ void bind_wheelset(py::module_& m) {
            "max_iterations"_a = wr::EquilibriumOptions().max_iterations,
            "z and roll at which the rails carry load_n (N) at the lateral shift and yaw, for this model as it "
            "is (its solver, elements, grids and starts): evaluate at the pose found carries the load to "
-           "force_tolerance. The model's state follows the poses the search evaluates.")
+           "force_tolerance. Every pose tried is evaluated from the model's state before the call; the "
+           "model's state is then that of the pose returned (when not ok, the pose of smallest residual, "
+           "with its wheels and residuals).")
       .def(
           "reset",
           [](PyWheelset& model) { model.reset(); },

@@ -392,3 +392,62 @@ TEST_CASE("The same pose reached along different histories: forces within the gr
     }
   }
 }
+
+TEST_CASE("A warm model's equilibrium tries every pose from the model's state", "[wheelrail][model]") {
+  // The elliptic basis starts warm by default. Evaluated one trial after the other, a trial's
+  // contact set came from the one before, so the force was no function of the pose and the
+  // search stalled here (not converged after 40 steps); from the committed state it balances.
+  const wr::WheelsetPose stalled{-4e-3, 0, 0, -20e-3};
+  wr::WheelsetContactOptions options;
+  options.solver = fastnorm::SolverSpec<double>::parse("elliptic");
+  REQUIRE(options.starts_warm());
+  wr::WheelsetContact<fastnorm::ReducedSolver<fastnorm::EllipticBasis>> model(wr::Track(), wr::Wheelset(), options);
+  const double load = 1e5;
+  const auto found = wr::solve_equilibrium(model, stalled.y, stalled.yaw, load);
+  REQUIRE(found.ok());
+  CHECK(found.iterations < 10);
+  // The model is left as evaluated at the pose found: evaluated there again (warm, from that
+  // pose's contact sets), it carries the load as the search found.
+  const auto& again = model.evaluate(found.pose);
+  REQUIRE(again.ok());
+  double vertical = 0;
+  for (const auto& wheel : again.wheels) {
+    for (const auto& patch : wheel.patches) vertical += patch.normal_force * std::cos(patch.patch.frame.inclination);
+  }
+  CHECK(vertical - load == Approx(found.vertical_residual).margin(1e-9 * load));
+}
+
+TEST_CASE("Where the model's force jumps across the load the search stops at its best pose", "[wheelrail][model]") {
+  // A reduced basis's force jumps as an element joins its contact set. At y = 2 mm, yaw 5 mrad,
+  // 100 kN the elliptic model's vertical force jumps by about 19 N (1.9e-4 of the load)
+  // between two poses 4.3 nm apart, and the load falls inside the jump: no pose carries it
+  // within the default tolerance (0.1 N). Before, the search ping-ponged across the jump for
+  // its 40 steps and reported zeros.
+  wr::WheelsetContactOptions options;
+  options.solver = fastnorm::SolverSpec<double>::parse("elliptic");
+  options.reduced_warm_start = false;
+  options.snap_to_lattice = false;
+  wr::WheelsetContact<fastnorm::ReducedSolver<fastnorm::EllipticBasis>> model(wr::Track(), wr::Wheelset(), options);
+  const double load = 1e5;
+  const auto found = wr::solve_equilibrium(model, 2e-3, 5e-3, load);
+  CHECK(found.status == wr::EquilibriumStatus::not_converged);
+  CHECK_THAT(found.message, Contains("jump across the load") && Contains("nm apart"));
+  CHECK(found.iterations < 12);
+  // The best pose is given with its own patches and residuals, within the jump.
+  REQUIRE(found.patches.size() == 2);
+  double vertical = 0;
+  for (const auto& patch : found.patches) vertical += patch.normal_force * std::cos(patch.patch.frame.inclination);
+  CHECK(found.vertical_force == Approx(vertical).epsilon(1e-14));
+  CHECK(found.vertical_residual == Approx(vertical - load).margin(1e-9 * load));
+  CHECK(std::abs(found.vertical_residual) > wr::EquilibriumOptions().force_tolerance * load);
+  CHECK(std::abs(found.vertical_residual) < 2e-4 * load);
+  CHECK(found.roll_residual != 0);
+  // They are the pose's: a new model (cold, as this one) gives the same force there.
+  wr::WheelsetContact<fastnorm::ReducedSolver<fastnorm::EllipticBasis>> fresh(wr::Track(), wr::Wheelset(), options);
+  const auto& at_best = fresh.evaluate(found.pose);
+  double fresh_vertical = 0;
+  for (const auto& wheel : at_best.wheels) {
+    for (const auto& patch : wheel.patches) fresh_vertical += patch.normal_force * std::cos(patch.patch.frame.inclination);
+  }
+  CHECK(fresh_vertical == Approx(found.vertical_force).epsilon(1e-12));
+}

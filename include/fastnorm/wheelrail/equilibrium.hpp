@@ -84,7 +84,8 @@ inline const char* to_string(EquilibriumStatus status) {
   return "unknown";
 }
 
-/// The loaded wheelset at rest.
+/// The loaded wheelset at rest. A search that ends not_converged gives its accepted pose of
+/// smallest residual, with that pose's patches, forces and residuals.
 struct Equilibrium {
   EquilibriumStatus status = EquilibriumStatus::not_solved;
   std::string message;
@@ -96,7 +97,7 @@ struct Equilibrium {
   double lateral_force = 0;           ///< Σ N sin δ (N): the lateral force needed to hold y
   double vertical_residual = 0;       ///< vertical_force − load (N)
   double roll_residual = 0;           ///< −Σ N·L about the wheelset centre (N·m); 0 in single-wheel mode
-  int iterations = 0;                 ///< contact evaluations (solves of every loaded patch)
+  int iterations = 0;                 ///< contact evaluations (solves of every loaded patch), the best pose's again included
 
   bool ok() const { return status == EquilibriumStatus::converged; }
 };
@@ -142,15 +143,43 @@ class EquilibriumSearch {
   }
 
   /// The search on a given model, as it is (its element sizes, grids and starts): one stage
-  /// to force_tolerance. The model's state follows the poses evaluated.
+  /// to force_tolerance, every pose evaluated from the model's state before the search; the
+  /// model's state is then that of its evaluation at the pose returned.
   template <typename Model>
   Equilibrium run_on(Model& model, WheelsetPose pose) {
-    if (!settle(model, options_.force_tolerance, pose, true)) return finish(failure_, pose);
+    FromCommitted<Model> trials{model};
+    if (!settle(trials, options_.force_tolerance, pose, true)) return finish(failure_, pose);
     return finish_balanced(pose);
   }
 
  private:
-  enum class Step { balanced, out_of_steps, lost_contact, solver_failed };
+  /// How a Newton stage ended. force_jump: steps too short to be checked (unchecked_length)
+  /// no longer lower the residual, because the model's force jumps across the load there
+  /// (a reduced basis's, as elements join its contact set).
+  enum class Step { balanced, out_of_steps, lost_contact, solver_failed, force_jump };
+
+  /// A pose the Newton search accepted, and its residual (vertical N, roll moment N·m).
+  struct Accepted {
+    WheelsetPose pose;
+    Eigen::Vector2d residual;
+  };
+
+  /// A model evaluated from its state at construction every time: the search's trial poses
+  /// leave no trace in each other's answers (WheelsetContact::history and restore, §9), so a
+  /// model that starts warm answers as a function of the pose during the search.
+  template <typename Model>
+  struct FromCommitted {
+    Model& model;
+    typename Model::History committed = model.history();
+    const WheelsetContactResult& evaluate(const WheelsetPose& pose) {
+      model.restore(committed);
+      return model.evaluate(pose);
+    }
+    const WheelContact& evaluate(const WheelsetPose& pose, Side side) {
+      model.restore(committed);
+      return model.evaluate(pose, side);
+    }
+  };
 
   /// The first stage's solver: the elliptic basis, of the same family as `Solver` (a program
   /// that names its solver does not compile AnySolver).
@@ -174,6 +203,8 @@ class EquilibriumSearch {
   }
 
   /// Newton on `model` to `tolerance`; false (and failure_ set) when it did not balance.
+  /// When it did not converge, `pose` is then the accepted pose of smallest residual and the
+  /// result holds its patches and residuals.
   template <typename Model>
   bool settle(Model& model, double tolerance, WheelsetPose& pose, bool last) {
     const Step outcome = newton(model, pose, tolerance);
@@ -184,16 +215,30 @@ class EquilibriumSearch {
     if (!climb_.empty()) {
       result_.message = climb_ + "; no equilibrium found";
       failure_ = EquilibriumStatus::flange_climb;
-      return false;
+    } else {
+      switch (outcome) {
+        case Step::lost_contact: failure_ = EquilibriumStatus::lost_contact; break;
+        case Step::solver_failed: failure_ = EquilibriumStatus::solver_failed; break;
+        case Step::force_jump: failure_ = EquilibriumStatus::not_converged; break;
+        default:
+          result_.message = "no equilibrium within " + std::to_string(options_.max_iterations) + " steps";
+          failure_ = EquilibriumStatus::not_converged;
+      }
     }
-    switch (outcome) {
-      case Step::lost_contact: failure_ = EquilibriumStatus::lost_contact; break;
-      case Step::solver_failed: failure_ = EquilibriumStatus::solver_failed; break;
-      default:
-        result_.message = "no equilibrium within " + std::to_string(options_.max_iterations) + " steps";
-        failure_ = EquilibriumStatus::not_converged;
-    }
+    if (failure_ == EquilibriumStatus::not_converged && best_) store_best(model, pose);
     return false;
+  }
+
+  /// The result at the accepted pose of smallest residual (`pose` becomes it): evaluated
+  /// once more (counted in iterations), since the last evaluation may have been a trial.
+  template <typename Model>
+  void store_best(Model& model, WheelsetPose& pose) {
+    pose = best_->pose;
+    const std::string message = result_.message;
+    ++result_.iterations;
+    if (evaluate(model, pose)) return;  // it was evaluated before; a model that now fails keeps the message
+    result_.message = message;
+    store();
   }
 
   WheelsetContactOptions contact_options(const detail::ElementSizes& sizes, const SolverSpec<double>& solver) const {
@@ -219,12 +264,16 @@ class EquilibriumSearch {
   /// Jacobian from finite differences at each accepted pose.
   template <typename Model>
   Step newton(Model& model, WheelsetPose& pose, double tolerance) {
+    best_.reset();
     if (result_.iterations >= options_.max_iterations) return Step::out_of_steps;
     ++result_.iterations;
     if (const auto failed = evaluate(model, pose)) return *failed;
     if (!every_wheel_carries()) return Step::lost_contact;
+    best_ = Accepted{pose, residual_};
     double trust = initial_trust();
     bool differences = false;
+    int unchecked_without_gain = 0;  // accepted unchecked steps in a row that left the best residual
+                                     // within a tenth (a search that converges, even slowly, lowers it)
     while (!balanced(residual_, tolerance)) {
       const Eigen::Vector2d residual = residual_;  // at the accepted pose
       Eigen::Matrix2d jacobian = newton_jacobian();
@@ -255,9 +304,17 @@ class EquilibriumSearch {
       } else if (!every_wheel_carries()) {
         rejection = Step::lost_contact;
       } else if (length <= unchecked_length || scaled_norm(residual_) < scaled_norm(residual)) {
+        const WheelsetPose before = pose;
         pose = trial;
         trust = std::max(trust, 2 * std::min(length, trust));
         result_.message.clear();
+        const bool gain = scaled_norm(residual_) <= 0.9 * scaled_norm(best_->residual);
+        unchecked_without_gain = length <= unchecked_length && !gain ? unchecked_without_gain + 1 : 0;
+        if (scaled_norm(residual_) < scaled_norm(best_->residual)) best_ = Accepted{pose, residual_};
+        if (unchecked_without_gain == stalled_steps) {
+          result_.message = force_jump_message({before, residual}, {pose, residual_});
+          return Step::force_jump;
+        }
         continue;
       }
       trust = std::min(length, trust) / 4;
@@ -309,6 +366,22 @@ class EquilibriumSearch {
   /// jumps as elements join its contact set (up to about 5e-4 of the load at 20 elements),
   /// would otherwise stop a search that full Newton steps finish.
   static constexpr double unchecked_length = 1e-6;
+  /// Unchecked steps in a row that do not lower the best residual by a tenth, after which
+  /// the search ends at a force jump.
+  static constexpr int stalled_steps = 3;
+
+  /// Why the search ended at a jump of the model's force: the residuals at the last two
+  /// accepted poses, and how far apart these are (at the taping line).
+  std::string force_jump_message(const Accepted& before, const Accepted& after) const {
+    using fastnorm::detail::to_text;
+    const double apart = std::max(std::abs(after.pose.z - before.pose.z),
+                                  std::abs(after.pose.roll - before.pose.roll) * half_gauge());
+    return "the model's forces jump across the load: poses " + to_text(apart * 1e9) +
+           " nm apart leave vertical residuals of " + to_text(before.residual(0)) + " N and " +
+           to_text(after.residual(0)) + " N (roll moments " + to_text(before.residual(1)) + " and " +
+           to_text(after.residual(1)) + " N m); no pose of this discrete model carries the load within force_tolerance " +
+           to_text(options_.force_tolerance) + " of it (the accepted pose of smallest residual is given)";
+  }
 
   double half_gauge() const { return wheelset_.layout().taping_line_half_distance; }
 
@@ -432,6 +505,7 @@ class EquilibriumSearch {
   std::vector<const PatchContact*> patches_;
   Eigen::VectorXd force_, stiffness_, cosine_, lever_;
   Eigen::Vector2d residual_ = Eigen::Vector2d::Zero();
+  std::optional<Accepted> best_;  // the accepted pose of smallest scaled residual in the current stage
 };
 
 /// Where the two-wheel search starts: options.start's z and roll, or the rigid contact at
@@ -481,7 +555,9 @@ Equilibrium solve_equilibrium(const Track& track, const Wheelset& wheelset, doub
 /// starts (options.contact is not used; the model's options must compute the stiffness),
 /// so that the pose found is in equilibrium for that model itself, e.g. the first pose of
 /// a time integration with it (docs/wheel-rail.md §5). One Newton stage to
-/// options.force_tolerance; the model's state follows the poses the search evaluates
+/// options.force_tolerance. Every pose tried is evaluated from the model's state before the
+/// search (history() and restore()), so that a warm model's force is a function of the pose
+/// during the search; the model's state is then that of its evaluation at the pose returned
 /// (model.reset() forgets it).
 /// @throws fastnorm::invalid_argument for bad y, yaw, load or options, or a model without
 ///         stiffness
