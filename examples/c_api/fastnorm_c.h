@@ -315,7 +315,7 @@ FASTNORM_C_API int fastnorm_wheelset_equilibrium(fastnorm_wheelset* model, doubl
 
 /* Contact tables (docs/tables.md §4): results precomputed over (lateral shift y in m, yaw in
  * rad, load in N) per wheel/rail profile pair, read from the file `fastnorm-table export`
- * writes, looked up in well under a microsecond (multilinear) or a few (PCHIP). A table is
+ * writes, looked up in well under a microsecond (multilinear) or about one (PCHIP). A table is
  * read-only once read: one table may be looked up by many threads at once. */
 typedef struct fastnorm_table fastnorm_table;
 

@@ -99,6 +99,7 @@ class ContactTable {
                                     " must be finite",
                                 values_[c * outputs() + o]));
     }
+    differentiate_along_y();
   }
 
   const TableAxes& axes() const { return axes_; }
@@ -225,10 +226,12 @@ class ContactTable {
     std::size_t first = 0, last = 0;
   };
 
-  /// PCHIP, one axis after the other (docs/tables.md §4). The stencil of up to 4 × 4 × 4
-  /// cases around the cell gives the derivative estimates; an outer layer of it (one side of
-  /// one axis) holding a case of another topology is dropped, so that the derivatives at the
-  /// cell's nodes become one-sided there and nothing across a topology change enters.
+  /// PCHIP, one axis after the other (docs/tables.md §4). Along y, the derivatives at the
+  /// cell's nodes were computed when the table was built (differentiate_along_y), each from
+  /// its own line's neighbours of its own code. Along yaw and load, the stencil of up to
+  /// 4 × 4 cases around the cell gives them; an outer layer of it (one side of one axis)
+  /// holding a case of another topology is dropped, so that the derivatives at the cell's
+  /// nodes become one-sided there. Nothing across a topology change enters.
   void interpolate_pchip(const Located& located, std::int32_t code, double* out) const {
     const NodeIndex& cell = located.cell;
     std::array<Stencil, axis_count> full{};
@@ -238,32 +241,29 @@ class ContactTable {
       full[a].last = size == 1 ? 0 : std::min(cell[a] + 2, size - 1);
     }
     std::array<Stencil, axis_count> kept = full;
-    for (std::size_t a = 0; a < axis_count; ++a) {
+    for (std::size_t a = 1; a < axis_count; ++a) {
       if (full[a].first < cell[a] && !layer_matches(located, full, a, full[a].first, code)) kept[a].first = cell[a];
       const std::size_t upper = std::min(cell[a] + 1, full[a].last);
       if (full[a].last > upper && !layer_matches(located, full, a, full[a].last, code)) kept[a].last = upper;
     }
-
-    std::array<PchipAxis, axis_count> axis{};
-    for (std::size_t a = 0; a < axis_count; ++a)
-      axis[a] = PchipAxis(axis_nodes(a), kept[a], cell[a], located.query[a]);
+    const CellWeights along_shift(axis_nodes(0), cell[0], located.query[0]);
+    const std::array<PchipAxis, 2> axis{PchipAxis(axis_nodes(1), kept[1], cell[1], located.query[1]),
+                                        PchipAxis(axis_nodes(2), kept[2], cell[2], located.query[2])};
 
     // Values along y for every (yaw, load) line of the stencil, then along yaw, then load.
     const std::size_t n = outputs();
     for (std::size_t o = 0; o < n; ++o) {
       std::array<double, 4> along_yaw{};
       std::array<double, 4> along_load{};
-      for (std::size_t k = 0; k < axis[2].count; ++k) {
-        for (std::size_t j = 0; j < axis[1].count; ++j) {
-          std::array<double, 4> along_y{};
-          const double* line =
-              values_.data() + case_at(located, {axis[0].first, axis[1].first + j, axis[2].first + k}) * n + o;
-          for (std::size_t i = 0; i < axis[0].count; ++i) along_y[i] = line[i * n];
-          along_yaw[j] = axis[0].evaluate(along_y);
+      for (std::size_t k = 0; k < axis[1].stencil.count; ++k) {
+        for (std::size_t j = 0; j < axis[0].stencil.count; ++j) {
+          const std::size_t at =
+              case_at(located, {cell[0], axis[0].stencil.first + j, axis[1].stencil.first + k}) * n + o;
+          along_yaw[j] = along_shift.hermite(values_.data() + at, shift_derivatives_.data() + at, n);
         }
-        along_load[k] = axis[1].evaluate(along_yaw);
+        along_load[k] = axis[0].evaluate(along_yaw);
       }
-      out[o] = axis[2].evaluate(along_load);
+      out[o] = axis[1].evaluate(along_load);
     }
   }
 
@@ -279,26 +279,52 @@ class ContactTable {
     return true;
   }
 
-  /// PCHIP along one axis (docs/tables.md §4): what depends only on the nodes and the query,
-  /// set up once per lookup, then `evaluate` for each line of values along the axis.
-  struct PchipAxis {
+  /// The PCHIP derivative along y of every solved case and output, in the layout of values_:
+  /// from the nodes of its own line (yaw, load and pair fixed) within one of it on each side
+  /// that have its code, and two on one side where the other is missing (the one-sided
+  /// estimate). Done once, so that a lookup's 16 lines along y are each a cubic Hermite form
+  /// of two values and two derivatives (docs/tables.md §4).
+  void differentiate_along_y() {
+    const std::vector<double>& nodes = axes_.lateral_shift_m;
+    const std::size_t shifts = nodes.size(), n = outputs();
+    shift_derivatives_.assign(values_.size(), 0.0);
+    if (shifts == 1) return;
+    for (std::size_t line = 0; line < topology_.size(); line += shifts) {
+      const std::int32_t* code = topology_.data() + line;
+      auto same = [&](std::size_t i, std::size_t other) { return code[other] == code[i]; };
+      for (std::size_t i = 0; i < shifts; ++i) {
+        if (code[i] < 0) continue;
+        const bool left = i > 0 && same(i, i - 1);
+        const bool right = i + 1 < shifts && same(i, i + 1);
+        if (!left && !right) continue;  // every cell it bounds is a topology change
+        std::size_t first = left ? i - 1 : i;
+        std::size_t last = right ? i + 1 : i;
+        if (!left && last + 1 < shifts && same(i, last + 1)) ++last;  // one-sided from above
+        if (!right && first > 0 && same(i, first - 1)) --first;       // one-sided from below
+        const PchipStencil stencil(nodes, {first, last});
+        for (std::size_t o = 0; o < n; ++o) {
+          std::array<double, 4> run{};
+          for (std::size_t s = 0; s < stencil.count; ++s) run[s] = values_[(line + first + s) * n + o];
+          shift_derivatives_[(line + i) * n + o] = stencil.derivative(stencil.slopes(run), i - first);
+        }
+      }
+    }
+  }
+
+  /// The nodes of a PCHIP stencil along one axis (2 to 4 of them) and what depends on them
+  /// only: the inverse widths for the slopes and the derivative formulas' weights.
+  struct PchipStencil {
     std::size_t first = 0;  ///< the stencil's first node on the axis
     std::size_t count = 1;  ///< its nodes (1: a one-node axis, no interpolation)
-    std::size_t cell = 0;   ///< the cell's lower node within the stencil
     std::array<double, 3> inverse_width{};
-    /// The cubic Hermite form on the cell about its lower value: p = v_c + lift (v_c+1 − v_c)
-    /// + lower_weight d_c + upper_weight d_c+1.
-    double lift = 0, lower_weight = 0, upper_weight = 0;
-    bool at_upper_end = false;  ///< t = 1 at the axis's end: the node's value exactly
     /// Per node s of the stencil: inside, the Fritsch–Butland weights w1, w2 of the harmonic mean
     /// (w1 + w2) / (w1/m_s−1 + w2/m_s); at an end, the one-sided estimate's (2h0 + h1)/(h0 + h1)
     /// and h0/(h0 + h1).
     std::array<std::array<double, 2>, 4> derivative_weight{};
 
-    PchipAxis() = default;
-    PchipAxis(const std::vector<double>& nodes, const Stencil& stencil, std::size_t cell_on_axis, double x)
-        : first(stencil.first), count(stencil.last - stencil.first + 1), cell(cell_on_axis - stencil.first) {
-      if (count == 1) return;
+    PchipStencil() = default;
+    PchipStencil(const std::vector<double>& nodes, const Stencil& stencil)
+        : first(stencil.first), count(stencil.last - stencil.first + 1) {
       std::array<double, 3> width{};
       for (std::size_t s = 0; s + 1 < count; ++s) {
         width[s] = nodes[first + s + 1] - nodes[first + s];
@@ -313,21 +339,12 @@ class ContactTable {
           derivative_weight[s] = {(2 * h0 + h1) / (h0 + h1), h0 / (h0 + h1)};
         }
       }
-      const double h = width[cell];
-      const double t = (x - nodes[cell_on_axis]) / h;
-      at_upper_end = t == 1;
-      lift = t * t * (3 - 2 * t);
-      lower_weight = h * t * (t - 1) * (t - 1);
-      upper_weight = h * t * t * (t - 1);
     }
 
-    double evaluate(const std::array<double, 4>& values) const {
-      if (count == 1) return values[0];
-      if (at_upper_end) return values[cell + 1];
+    std::array<double, 3> slopes(const std::array<double, 4>& values) const {
       std::array<double, 3> slope{};
       for (std::size_t s = 0; s + 1 < count; ++s) slope[s] = (values[s + 1] - values[s]) * inverse_width[s];
-      return values[cell] + lift * (values[cell + 1] - values[cell]) + lower_weight * derivative(slope, cell) +
-             upper_weight * derivative(slope, cell + 1);
+      return slope;
     }
 
     /// The derivative PCHIP gives node s: inside, zero at a local extremum, else the weighted
@@ -352,12 +369,61 @@ class ContactTable {
     }
   };
 
+  /// The cubic Hermite form on a cell [x_c, x_c+1] at the query, about its lower value:
+  /// p = v_c + lift (v_c+1 − v_c) + lower_weight d_c + upper_weight d_c+1.
+  struct CellWeights {
+    double lift = 0, lower_weight = 0, upper_weight = 0;
+    bool interpolates = false;  ///< false on a one-node axis: the node's value
+    bool at_upper_end = false;  ///< t = 1 at the axis's end: the upper node's value exactly
+
+    CellWeights() = default;
+    CellWeights(const std::vector<double>& nodes, std::size_t cell, double x) : interpolates(nodes.size() > 1) {
+      if (!interpolates) return;
+      const double h = nodes[cell + 1] - nodes[cell];
+      const double t = (x - nodes[cell]) / h;
+      at_upper_end = t == 1;
+      lift = t * t * (3 - 2 * t);
+      lower_weight = h * t * (t - 1) * (t - 1);
+      upper_weight = h * t * t * (t - 1);
+    }
+
+    double hermite(double lower, double upper, double lower_derivative, double upper_derivative) const {
+      if (!interpolates) return lower;
+      if (at_upper_end) return upper;
+      return lower + lift * (upper - lower) + lower_weight * lower_derivative + upper_weight * upper_derivative;
+    }
+    /// The same from the cell's lower node's value and derivative, the upper's `stride` further.
+    double hermite(const double* value, const double* derivative, std::size_t stride) const {
+      if (!interpolates) return value[0];
+      return hermite(value[0], value[stride], derivative[0], derivative[stride]);
+    }
+  };
+
+  /// PCHIP along yaw or load: the stencil kept around the cell and the cell's weights, set up
+  /// once per lookup, then `evaluate` for each line of values along the axis.
+  struct PchipAxis {
+    PchipStencil stencil;
+    std::size_t cell = 0;  ///< the cell's lower node within the stencil
+    CellWeights weights;
+
+    PchipAxis(const std::vector<double>& nodes, const Stencil& kept, std::size_t cell_on_axis, double x)
+        : stencil(nodes, kept), cell(cell_on_axis - kept.first), weights(nodes, cell_on_axis, x) {}
+
+    double evaluate(const std::array<double, 4>& values) const {
+      if (stencil.count == 1) return values[0];
+      const std::array<double, 3> slope = stencil.slopes(values);
+      return weights.hermite(values[cell], values[cell + 1], stencil.derivative(slope, cell),
+                             stencil.derivative(slope, cell + 1));
+    }
+  };
+
   TableAxes axes_;
   std::vector<std::string> pair_names_;
   std::vector<std::string> output_names_;
   std::vector<std::string> output_units_;
   std::vector<double> values_;
   std::vector<std::int32_t> topology_;
+  std::vector<double> shift_derivatives_;  // PCHIP's dv/dy at every case and output (values_' layout)
 };
 
 }  // namespace fastnorm

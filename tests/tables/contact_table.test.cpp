@@ -173,6 +173,42 @@ TEST_CASE("The topology guard: no blend across a change of patch count", "[table
   }
 }
 
+TEST_CASE("The guard along y is per line: a change in one yaw line leaves its neighbours' derivatives two-sided",
+          "[table]") {
+  // Line yaw index 2 changes code from y index 8 on; the other lines do not. Nothing beyond the
+  // change may enter a lookup: the answer cannot depend on the values held there.
+  const Field field = [](double y, double yaw, double load) { return 1e4 + 1e6 * y * y + 1e3 * yaw + 0.1 * load; };
+  const TableAxes axes = example_axes();
+  const std::size_t changed_line = 2, change = 8;
+  auto table_with = [&](double beyond) {
+    std::vector<double> values;
+    std::vector<std::int32_t> topology;
+    for (double load : axes.load_n)
+      for (std::size_t j = 0; j < axes.yaw_rad.size(); ++j)
+        for (std::size_t i = 0; i < axes.lateral_shift_m.size(); ++i) {
+          const bool across = j == changed_line && i >= change;
+          const double f = across ? beyond : field(axes.lateral_shift_m[i], axes.yaw_rad[j], load);
+          values.push_back(f);
+          values.push_back(2 * f + 1);
+          topology.push_back(across ? 2 : 1);
+        }
+    return ContactTable(axes, {"S1002/UIC60"}, {"fn", "twice"}, {"N", "N"}, values, topology);
+  };
+  const ContactTable high = table_with(1e9), low = table_with(-5e8);
+  const double load = 9e4;
+  // Cells whose y stencil reaches the change on the changed line: that line a corner line of
+  // the yaw cell (its derivative one-sided along y), or an outer line (its yaw layer dropped).
+  for (std::size_t yaw_cell : {changed_line - 2, changed_line - 1, changed_line, changed_line + 1}) {
+    const double yaw = 0.4 * axes.yaw_rad[yaw_cell] + 0.6 * axes.yaw_rad[yaw_cell + 1];
+    for (std::size_t cell = change - 3; cell + 1 < change; ++cell) {
+      const double y = 0.6 * axes.lateral_shift_m[cell] + 0.4 * axes.lateral_shift_m[cell + 1];
+      const auto a = lookup(high, y, yaw, load, TableInterpolation::pchip);
+      CHECK(a[0] == lookup(low, y, yaw, load, TableInterpolation::pchip)[0]);
+      CHECK(std::abs(a[0] - field(y, yaw, load)) < 1e-3 * field(y, yaw, load));
+    }
+  }
+}
+
 TEST_CASE("Failed cases are never interpolated", "[table]") {
   const Field field = [](double y, double, double) { return 1 + y; };
   const TableAxes axes = example_axes();
