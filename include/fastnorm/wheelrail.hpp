@@ -16,5 +16,6 @@
 #include "fastnorm/wheelrail/equilibrium.hpp"
 #include "fastnorm/wheelrail/wheelset_contact_options.hpp"
 #include "fastnorm/wheelrail/wheelset_contact_result.hpp"
+#include "fastnorm/wheelrail/patch_creep.hpp"
 #include "fastnorm/wheelrail/wheelset_contact.hpp"
 #include "fastnorm/wheelrail/setup.hpp"

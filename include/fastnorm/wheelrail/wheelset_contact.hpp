@@ -18,15 +18,14 @@
 #include <vector>
 
 #include "fastnorm/any_solver.hpp"
-#include "fastnorm/fastsim.hpp"
 #include "fastnorm/solver_from_spec.hpp"
 #include "fastnorm/error.hpp"
 #include "fastnorm/material.hpp"
 #include "fastnorm/solver_spec.hpp"
-#include "fastnorm/strip_theory.hpp"
 #include "fastnorm/wheelrail/contact_search.hpp"
 #include "fastnorm/wheelrail/creepage.hpp"
 #include "fastnorm/wheelrail/patch.hpp"
+#include "fastnorm/wheelrail/patch_creep.hpp"
 #include "fastnorm/wheelrail/undeformed_distance.hpp"
 #include "fastnorm/wheelrail/wheelset_contact_options.hpp"
 #include "fastnorm/wheelrail/wheelset_contact_result.hpp"
@@ -137,7 +136,7 @@ class WheelsetContact {
       : track_(std::move(track)),
         wheelset_(std::move(wheelset)),
         options_(std::move(options)),
-        strips_(options_.material) {
+        creep_(options_.material) {
     options_.validate();
     check_spec_for<Solver>(options_.solver, "WheelsetContactOptions: solver");
     choose_element_sizes();
@@ -343,9 +342,9 @@ class WheelsetContact {
     clock = std::chrono::steady_clock::now();
     for (std::size_t k = 0; k < count; ++k) {
       if (velocity) {
-        add_creep(pose, *velocity, wheel.patches[k]);
+        creep_.add(wheelset_, options_, pose, *velocity, wheel.patches[k]);
       } else {
-        clear_creep(wheel.patches[k], 0);
+        PatchCreep::clear(wheel.patches[k], 0);
       }
     }
     wheel.times.tangential = velocity ? detail::seconds_since(clock) : 0.0;
@@ -357,66 +356,6 @@ class WheelsetContact {
       wheel.moment += wheel.patches[k].moment;
       wheel.normal_force += wheel.patches[k].normal_force;
     }
-  }
-
-  /// The creepages of a patch at its reference point and its creep forces by the method of
-  /// options.creep on its pressure (docs/wheel-rail.md §10), added to the patch's force and
-  /// moment on the wheel.
-  void add_creep(const WheelsetPose& pose, const WheelsetVelocity& velocity, PatchContact& out) {
-    const auto& patch = out.patch;
-    const PatchKinematics kinematics = patch_kinematics(wheelset_, pose, velocity, patch.frame);
-    const auto& normal = out.solution;
-    if (!normal.ok() || !(normal.normal_force > 0)) {  // no pressure to carry tractions
-      clear_creep(out, patch.grid.size());
-      out.creepage = kinematics.creepage;
-      return;
-    }
-    out.creepage = kinematics.creepage;
-    const double friction = *options_.creep.friction;
-    if (options_.creep.method == CreepMethod::fastsim) {
-      const auto flexibility = kalker_flexibility(equivalent_ellipse(patch.grid, normal), options_.material);
-      solve_fastsim(patch.grid, normal, friction, kinematics.creepage, flexibility, kinematics.direction, out.traction,
-                    options_.creep.sensitivities ? &out.creep_jacobian : nullptr);
-    } else {
-      strips_.solve(patch.grid, normal, friction, kinematics.creepage, kinematics.direction, out.traction);
-      if (options_.creep.sensitivities) strip_theory_jacobian(patch, normal, kinematics, out.creep_jacobian);
-    }
-    const auto& traction = out.traction;
-    out.creep_force = -(traction.force_x * Eigen::Vector3d::UnitX() + traction.force_y * patch.frame.lateral_axis());
-    out.force += out.creep_force;
-    out.moment += detail::cross(patch.frame.reference - wheelset_.centre(pose), out.creep_force) -
-                  traction.spin_moment * patch.frame.normal();
-  }
-
-  /// d(Fx, Fy, Mz)/d(ξ, η, φ) of strip theory by central differences, steps 10⁻⁷ in ξ and η
-  /// and 10⁻⁷/c in φ (c the patch's size √(area/π)): strip theory is smooth in the
-  /// creepages but for the element where an adhesion zone ends, whose jumps are 10⁻⁵ of the
-  /// forces' scale per step and average out.
-  void strip_theory_jacobian(const ContactPatch& patch, const Solution<>& normal, const PatchKinematics& kinematics,
-                             CreepJacobian<double>& jacobian) {
-    const double friction = *options_.creep.friction;
-    const double size = std::sqrt(static_cast<double>(normal.in_contact.count()) * patch.grid.element_area() / pi<double>);
-    for (int column = 0; column < 3; ++column) {
-      const double step = column == 2 ? 1e-7 / size : 1e-7;
-      Eigen::Vector3d sides[2];
-      for (int side = 0; side < 2; ++side) {
-        Creepage<> shifted = kinematics.creepage;
-        double& value = column == 0 ? shifted.longitudinal : column == 1 ? shifted.lateral : shifted.spin;
-        value += side == 0 ? step : -step;
-        strips_.solve(patch.grid, normal, friction, shifted, kinematics.direction, difference_traction_);
-        sides[side] = {difference_traction_.force_x, difference_traction_.force_y, difference_traction_.spin_moment};
-      }
-      jacobian.col(column) = (sides[0] - sides[1]) / (2 * step);
-    }
-  }
-
-  /// No creep: the patch's creepages, tractions and creep force cleared, its tractions
-  /// `elements` long (0 without velocities: a model evaluated without them holds none).
-  static void clear_creep(PatchContact& out, Eigen::Index elements) {
-    out.creepage = {};
-    fastnorm::detail::reset_answer(out.traction, elements);
-    out.creep_force.setZero();
-    out.creep_jacobian.setConstant(std::nan(""));
   }
 
   /// For each new region, the previous patches whose reference point lies within the
@@ -664,8 +603,7 @@ class WheelsetContact {
   std::vector<State> spare_states_;                    // states beyond the patch count, storage kept
   std::vector<PatchContact> spare_patches_;            // result patches beyond the patch count, storage kept
   std::vector<SpareStorage> spare_storage_;            // h and solutions by length (fit_storage)
-  StripTheory<> strips_;                               // creep forces' workspace (CreepMethod::strip_theory)
-  TangentialSolution<> difference_traction_;           // strip theory's central differences
+  PatchCreep creep_;                                   // the creep forces' workspaces
   std::vector<std::vector<std::size_t>> predecessors_;  // of each new patch (match); the first `count` in use
   std::vector<int> successor_counts_;                  // of each previous patch (match)
   std::vector<ContactRegion> regions_;                 // of the wheel being evaluated, and spares
