@@ -24,6 +24,7 @@
 #include "fastnorm/solver_spec.hpp"
 #include "fastnorm/wheelrail/contact_search.hpp"
 #include "fastnorm/wheelrail/creepage.hpp"
+#include "fastnorm/wheelrail/model_storage.hpp"
 #include "fastnorm/wheelrail/patch.hpp"
 #include "fastnorm/wheelrail/patch_creep.hpp"
 #include "fastnorm/wheelrail/undeformed_distance.hpp"
@@ -53,25 +54,6 @@ struct PatchState {
   std::size_t solver = no_solver;
   Workspace workspace;
 };
-
-/// `used` resized to `count` elements without freeing any element's storage: those beyond
-/// `count` move to `spare`, and a growing `used` takes them back from it before making new
-/// ones (so a patch count that drops and rises again allocates nothing).
-template <typename T>
-void resize_keeping_storage(std::vector<T>& used, std::vector<T>& spare, std::size_t count) {
-  while (used.size() > count) {
-    spare.push_back(std::move(used.back()));
-    used.pop_back();
-  }
-  while (used.size() < count) {
-    if (spare.empty()) {
-      used.emplace_back();
-    } else {
-      used.push_back(std::move(spare.back()));
-      spare.pop_back();
-    }
-  }
-}
 
 inline double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -204,8 +186,7 @@ class WheelsetContact {
       keep_spare_workspaces(states);
       detail::resize_keeping_storage(states, spare_states_, 0);
     }
-    for (auto& solver : solvers_)
-      for (auto& workspace : solver.spare) workspace.forget();
+    solvers_.forget_spares();
   }
 
   /// What the next evaluate starts from: each patch's frame, lattice box, contact set and
@@ -313,7 +294,7 @@ class WheelsetContact {
       auto& patch = wheel.patches[k].patch;
       patch.frame = next[k].frame;
       patch.grid = next[k].grid;
-      fit_storage(wheel.patches[k], patch.grid.size());
+      spare_storage_.fit(wheel.patches[k], patch.grid.size());
       undeformed_distance(track_, wheelset_, pose, patch.frame, patch.grid, options_.distance, patch.undeformed_distance);
     }
     wheel.times.distance = detail::seconds_since(clock);
@@ -442,12 +423,12 @@ class WheelsetContact {
   void start_from(const std::vector<std::size_t>& predecessors, std::vector<State>& previous, State& state) {
     // The workspace follows the patch while its grid keeps its size; otherwise the patch
     // takes a spare one of its new size's solver (the storage of that size, no allocation).
-    state.solver = solver_for(state.grid);
+    state.solver = solvers_.index_for(state.grid, options_.solver, options_.material);
     if (!predecessors.empty() && previous[predecessors.front()].solver == state.solver) {
       state.workspace = std::move(previous[predecessors.front()].workspace);
       previous[predecessors.front()].solver = detail::no_solver;  // its workspace moved on
     } else {
-      state.workspace = take_workspace(state.solver);
+      state.workspace = solvers_.take_workspace(state.solver);
     }
     if (!options_.starts_warm() || predecessors.empty()) {
       state.workspace.start().clear();
@@ -481,7 +462,7 @@ class WheelsetContact {
 
   /// Solves one patch in approach control and fills its forces and stiffness.
   void solve_patch(const WheelsetPose& pose, State& state, PatchContact& out) {
-    const Solver& solver = solvers_[state.solver].solver;
+    const Solver& solver = solvers_.solver(state.solver);
     auto& patch = out.patch;
     state.workspace.recycle(std::move(out.solution));  // the last call's answer: its storage
     out.solution = solver.solve(patch.undeformed_distance, Loading<double>::approach(), state.workspace);
@@ -513,68 +494,11 @@ class WheelsetContact {
                                                         : std::nan("");
   }
 
-  /// The number of the solver of a grid's size (solvers do not depend on the grid's origin).
-  std::size_t solver_for(const Grid<double>& grid) {
-    for (std::size_t s = 0; s < solvers_.size(); ++s) {
-      const auto& known = solvers_[s].solver.grid();
-      if (known.mx() == grid.mx() && known.my() == grid.my()) return s;
-    }
-    solvers_.push_back({SolverFromSpec<Solver>::make(options_.solver, grid, options_.material), {}});
-    return solvers_.size() - 1;
-  }
-
-  /// Vectors of one length that no result patch holds at the moment.
-  struct SpareStorage {
-    Eigen::Index length = 0;
-    std::vector<Eigen::VectorXd> distances;
-    std::vector<Solution<double>> solutions;
-    std::vector<TangentialSolution<double>> tractions;
-  };
-
-  SpareStorage& spares_of(Eigen::Index length) {
-    for (auto& spare : spare_storage_) {
-      if (spare.length == length) return spare;
-    }
-    spare_storage_.push_back({length, {}, {}, {}});
-    return spare_storage_.back();
-  }
-
-  /// Gives the result patch `out` an h, a solution and tractions of `length` elements: its
-  /// own, if they have that length; else spares of that length, its own going to the spares of theirs.
-  /// Eigen's vectors keep no capacity, so a result slot that meets another grid size would
-  /// otherwise allocate whenever patches appear, merge or vanish.
-  void fit_storage(PatchContact& out, Eigen::Index length) {
-    exchange(out.patch.undeformed_distance, out.patch.undeformed_distance.size(), length, &SpareStorage::distances);
-    exchange(out.solution, out.solution.pressure.size(), length, &SpareStorage::solutions);
-    exchange(out.traction, out.traction.traction_x.size(), length, &SpareStorage::tractions);
-  }
-
-  /// `held`, of `held_length` elements, for one of `length` from the spares (if any: else it
-  /// is sized, once, where it is filled).
-  template <typename T>
-  void exchange(T& held, Eigen::Index held_length, Eigen::Index length, std::vector<T> SpareStorage::*pool) {
-    if (held_length == length) return;
-    if (held_length > 0) (spares_of(held_length).*pool).push_back(std::move(held));
-    auto& spares = spares_of(length).*pool;
-    if (spares.empty()) return;
-    held = std::move(spares.back());
-    spares.pop_back();
-  }
-
-  /// A spare workspace of solver `s`, or a new one.
-  Workspace take_workspace(std::size_t s) {
-    auto& spare = solvers_[s].spare;
-    if (spare.empty()) return Workspace();
-    Workspace workspace = std::move(spare.back());
-    spare.pop_back();
-    return workspace;
-  }
-
   /// After a call: the workspaces of patches that vanished or changed size go back to their
   /// solver's spares.
   void keep_spare_workspaces(std::vector<State>& states) {
     for (State& state : states) {
-      if (state.solver != detail::no_solver) solvers_[state.solver].spare.push_back(std::move(state.workspace));
+      if (state.solver != detail::no_solver) solvers_.give_back(state.solver, std::move(state.workspace));
       state.solver = detail::no_solver;
     }
   }
@@ -592,17 +516,12 @@ class WheelsetContact {
   double dx_ = 0, ds_ = 0;
   int iteration_budget_ = 0;  // set_iteration_budget
   int iterations_left_ = 0;   // of the budget, in the evaluate under way
-  /// A solver and the workspaces with its storage that no patch holds at the moment.
-  struct SolverSlot {
-    Solver solver;
-    std::vector<Workspace> spare;
-  };
-  std::vector<SolverSlot> solvers_;         // one per grid size met (dx, ds fixed)
+  detail::SolverCache<Solver> solvers_;     // one per grid size met (dx, ds fixed), with spare workspaces
   std::array<std::vector<State>, 2> states_;  // per wheel (left, right), per patch
   std::array<std::vector<State>, 2> next_states_;  // the same, being filled by a call
   std::vector<State> spare_states_;                    // states beyond the patch count, storage kept
   std::vector<PatchContact> spare_patches_;            // result patches beyond the patch count, storage kept
-  std::vector<SpareStorage> spare_storage_;            // h and solutions by length (fit_storage)
+  detail::StorageByLength spare_storage_;              // h, solutions and tractions by length
   PatchCreep creep_;                                   // the creep forces' workspaces
   std::vector<std::vector<std::size_t>> predecessors_;  // of each new patch (match); the first `count` in use
   std::vector<int> successor_counts_;                  // of each previous patch (match)

@@ -1,0 +1,132 @@
+#pragma once
+/// @file model_storage.hpp
+/// What the time loop's model keeps so that a step allocates nothing once its sizes have
+/// been met (docs/wheel-rail.md §9): the solvers per grid size with their spare
+/// workspaces, result storage by length, and vectors resized without freeing storage.
+
+#include <Eigen/Core>
+#include <cstddef>
+#include <utility>
+#include <vector>
+
+#include "fastnorm/grid.hpp"
+#include "fastnorm/material.hpp"
+#include "fastnorm/solver_from_spec.hpp"
+#include "fastnorm/solver_spec.hpp"
+#include "fastnorm/wheelrail/wheelset_contact_result.hpp"
+
+namespace fastnorm::wheelrail::detail {
+
+/// `used` resized to `count` elements without freeing any element's storage: those beyond
+/// `count` move to `spare`, and a growing `used` takes them back from it before making new
+/// ones (so a patch count that drops and rises again allocates nothing).
+template <typename T>
+void resize_keeping_storage(std::vector<T>& used, std::vector<T>& spare, std::size_t count) {
+  while (used.size() > count) {
+    spare.push_back(std::move(used.back()));
+    used.pop_back();
+  }
+  while (used.size() < count) {
+    if (spare.empty()) {
+      used.emplace_back();
+    } else {
+      used.push_back(std::move(spare.back()));
+      spare.pop_back();
+    }
+  }
+}
+
+/// One solver per grid size met (element sizes fixed: solvers do not depend on the grid's
+/// origin), each with its influence and segment tables, and the workspaces with its storage
+/// that no patch holds at the moment.
+template <typename Solver>
+class SolverCache {
+ public:
+  using Workspace = typename Solver::Workspace;
+
+  /// The number of the solver of `grid`'s size, built from `spec` and `material` when it is
+  /// met for the first time.
+  std::size_t index_for(const Grid<double>& grid, const SolverSpec<double>& spec, const Material<double>& material) {
+    for (std::size_t s = 0; s < slots_.size(); ++s) {
+      const auto& known = slots_[s].solver.grid();
+      if (known.mx() == grid.mx() && known.my() == grid.my()) return s;
+    }
+    slots_.push_back({SolverFromSpec<Solver>::make(spec, grid, material), {}});
+    return slots_.size() - 1;
+  }
+
+  const Solver& solver(std::size_t s) const { return slots_[s].solver; }
+  std::size_t size() const { return slots_.size(); }
+
+  /// A spare workspace of solver `s`, or a new one.
+  Workspace take_workspace(std::size_t s) {
+    auto& spare = slots_[s].spare;
+    if (spare.empty()) return Workspace();
+    Workspace workspace = std::move(spare.back());
+    spare.pop_back();
+    return workspace;
+  }
+
+  /// A workspace of solver `s` that no patch holds any more.
+  void give_back(std::size_t s, Workspace&& workspace) { slots_[s].spare.push_back(std::move(workspace)); }
+
+  /// Every spare workspace forgets what it kept of earlier solves (storage kept).
+  void forget_spares() {
+    for (auto& slot : slots_)
+      for (auto& workspace : slot.spare) workspace.forget();
+  }
+
+ private:
+  struct Slot {
+    Solver solver;
+    std::vector<Workspace> spare;
+  };
+  std::vector<Slot> slots_;
+};
+
+/// Result storage that no result patch holds at the moment, by length: Eigen's vectors keep
+/// no capacity, so a result slot that meets another grid size would otherwise allocate
+/// whenever patches appear, merge or vanish.
+class StorageByLength {
+ public:
+  /// Gives the result patch `out` an h, a solution and tractions of `length` elements: its
+  /// own, if they have that length; else spares of that length, its own going to the spares
+  /// of theirs.
+  void fit(PatchContact& out, Eigen::Index length) {
+    exchange(out.patch.undeformed_distance, out.patch.undeformed_distance.size(), length, &Spares::distances);
+    exchange(out.solution, out.solution.pressure.size(), length, &Spares::solutions);
+    exchange(out.traction, out.traction.traction_x.size(), length, &Spares::tractions);
+  }
+
+ private:
+  struct Spares {
+    Eigen::Index length = 0;
+    std::vector<Eigen::VectorXd> distances;
+    std::vector<Solution<double>> solutions;
+    std::vector<TangentialSolution<double>> tractions;
+  };
+
+  Spares& spares_of(Eigen::Index length) {
+    for (auto& spare : spares_) {
+      if (spare.length == length) return spare;
+    }
+    spares_.push_back({length, {}, {}, {}});
+    return spares_.back();
+  }
+
+  /// `held`, of `held_length` elements, for one of `length` from the spares (if any: else it
+  /// is sized, once, where it is filled).
+  template <typename T>
+  void exchange(T& held, Eigen::Index held_length, Eigen::Index length, std::vector<T> Spares::*pool) {
+    if (held_length == length) return;
+    if (held_length > 0) (spares_of(held_length).*pool).push_back(std::move(held));
+    auto& spares = spares_of(length).*pool;
+    if (spares.empty()) return;
+    held = std::move(spares.back());
+    spares.pop_back();
+  }
+
+  std::vector<Spares> spares_;
+};
+
+}  // namespace fastnorm::wheelrail::detail
