@@ -25,6 +25,7 @@
 #include "fastnorm/wheelrail/contact_search.hpp"
 #include "fastnorm/wheelrail/creepage.hpp"
 #include "fastnorm/wheelrail/model_storage.hpp"
+#include "fastnorm/wheelrail/patch_lattice.hpp"
 #include "fastnorm/wheelrail/patch.hpp"
 #include "fastnorm/wheelrail/patch_creep.hpp"
 #include "fastnorm/wheelrail/undeformed_distance.hpp"
@@ -34,26 +35,6 @@
 namespace fastnorm::wheelrail {
 
 namespace detail {
-
-inline constexpr std::size_t no_solver = static_cast<std::size_t>(-1);
-
-/// A patch's state kept from one call to the next.
-template <typename Workspace>
-struct PatchState {
-  PatchFrame frame;               ///< the grid's frame
-  PatchFrame anchor;              ///< the lattice's origin: the frame where the patch appeared
-  Eigen::Vector3d centre;         ///< the contact reference point (matching)
-  /// The grid on the lattice: its element (0, 0) is lattice point (box_i, box_j) from the
-  /// anchor, in elements; while the patch stays inside, the box (and so the numbering of
-  /// the elements, the solver and the workspace's start) is kept.
-  Eigen::Index box_i = 0, box_j = 0;
-  Grid<double> grid{1, 1, 1, 1};
-  std::vector<Eigen::Index> contact_set;
-  /// The model's solver of the grid's size, whose storage `workspace` holds; `no_solver`
-  /// once the workspace has moved on.
-  std::size_t solver = no_solver;
-  Workspace workspace;
-};
 
 inline double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -285,7 +266,7 @@ class WheelsetContact {
       wheel.patches[k].centre = regions[k].centre;
       wheel.patches[k].profile_y = regions[k].profile_y;
       wheel.flange_climb = wheel.flange_climb || wheelset_.at_flange_climb(regions[k].profile_y);
-      place_grid(regions[k], successors[k], previous, next[k]);
+      detail::place_grid(track_, regions[k], successors[k], previous, dx_, ds_, options_.snap_to_lattice, next[k]);
     }
     wheel.times.search = detail::seconds_since(clock);
 
@@ -368,56 +349,6 @@ class WheelsetContact {
     return predecessors;
   }
 
-  /// The patch's frame and grid. On the lattice, the frame's origin is the anchor (where the
-  /// patch appeared) moved by whole elements towards the new reference point, and the grid
-  /// keeps its predecessor's box while the patch's extent stays inside it
-  /// (docs/wheel-rail.md §9).
-  void place_grid(const ContactRegion& region, const std::vector<std::size_t>& predecessors,
-                  const std::vector<State>& previous, State& state) const {
-    state.frame = patch_frame(track_, region);
-    state.centre = region.centre;
-    if (!options_.snap_to_lattice) {
-      state.grid = patch_grid(patch_extent(state.frame, region), dx_, ds_);
-      return;
-    }
-    const State* kept = predecessors.size() == 1 ? &previous[predecessors.front()] : nullptr;
-    state.anchor = predecessors.empty() ? state.frame : previous[predecessors.front()].anchor;
-    const Eigen::Vector3d along = state.anchor.lateral_axis();
-    const Eigen::Vector3d offset = region.centre - state.anchor.reference;
-    const double a = std::round(offset.x() / dx_), b = std::round(offset.dot(along) / ds_);
-    state.frame.reference = state.anchor.reference + a * dx_ * Eigen::Vector3d::UnitX() + b * ds_ * along;
-    if (const auto rail = track_.rail_height(region.side, state.frame.reference.y())) {
-      state.frame.reference.z() = rail->value;
-    }
-    // The lattice box the extent needs, with the guard elements of patch_grid.
-    const Grid<double> needed = patch_grid(patch_extent(state.frame, region), dx_, ds_);
-    const auto first_i = static_cast<Eigen::Index>(std::lround(needed.x0() / dx_ + a));
-    const auto first_j = static_cast<Eigen::Index>(std::lround(needed.y0() / ds_ + b));
-    const bool fits = kept && first_i >= kept->box_i && first_j >= kept->box_j &&
-                      first_i + needed.mx() <= kept->box_i + kept->grid.mx() &&
-                      first_j + needed.my() <= kept->box_j + kept->grid.my();
-    Eigen::Index mx = needed.mx(), my = needed.my();
-    if (fits) {
-      state.box_i = kept->box_i, state.box_j = kept->box_j;
-      mx = kept->grid.mx(), my = kept->grid.my();
-    } else {  // a new box, with room to move before the next and a size from a coarse set
-      auto rounded = [](Eigen::Index count) { return (count + 2 * box_margin + box_quantum - 1) / box_quantum * box_quantum; };
-      mx = rounded(needed.mx()), my = rounded(needed.my());
-      state.box_i = first_i - (mx - needed.mx()) / 2, state.box_j = first_j - (my - needed.my()) / 2;
-    }
-    state.grid = Grid<double>(mx, my, dx_, ds_, (static_cast<double>(state.box_i) - a) * dx_,
-                              (static_cast<double>(state.box_j) - b) * ds_);
-  }
-
-  /// Whether a patch's grid numbers its elements as its only predecessor's did.
-  static bool same_box(const State& state, const std::vector<std::size_t>& predecessors,
-                       const std::vector<State>& previous) {
-    if (predecessors.size() != 1) return false;
-    const State& from = previous[predecessors.front()];
-    return from.box_i == state.box_i && from.box_j == state.box_j && from.grid.mx() == state.grid.mx() &&
-           from.grid.my() == state.grid.my();
-  }
-
   /// The starting contact set of a patch: its predecessors' sets mapped element by element
   /// onto its grid (a pure shift on the lattice); cold when it has none.
   void start_from(const std::vector<std::size_t>& predecessors, std::vector<State>& previous, State& state) {
@@ -434,30 +365,15 @@ class WheelsetContact {
       state.workspace.start().clear();
       return;
     }
-    if (options_.snap_to_lattice && same_box(state, predecessors, previous)) {
+    if (options_.snap_to_lattice && detail::same_box(state, predecessors, previous)) {
       // The same box: NORM's set and CG's pressures are in place in the workspace; a reduced
       // solver keeps no start of its own, so it gets the patch's last contact set as it is.
       const State& from = previous[predecessors.front()];
       if (options_.solver.is_reduced()) state.workspace.start().set_contact_set(from.contact_set);
       return;
     }
-    std::vector<Eigen::Index>& set = shifted_set_;
-    set.clear();
-    const Eigen::Vector3d lateral = state.frame.lateral_axis();
-    for (std::size_t p : predecessors) {
-      const State& from = previous[p];
-      const Eigen::Vector3d from_lateral = from.frame.lateral_axis();
-      for (Eigen::Index k : from.contact_set) {
-        const Eigen::Vector3d point = from.frame.reference + from.grid.x_of(k) * Eigen::Vector3d::UnitX() +
-                                      from.grid.y_of(k) * from_lateral - state.frame.reference;
-        const auto i = static_cast<Eigen::Index>(std::lround((point.x() - state.grid.x0()) / dx_));
-        const auto j = static_cast<Eigen::Index>(std::lround((point.dot(lateral) - state.grid.y0()) / ds_));
-        if (i >= 0 && i < state.grid.mx() && j >= 0 && j < state.grid.my()) set.push_back(state.grid.index(i, j));
-      }
-    }
-    std::sort(set.begin(), set.end());
-    set.erase(std::unique(set.begin(), set.end()), set.end());
-    state.workspace.start().set_contact_set(set);
+    detail::shifted_contact_set(predecessors, previous, state, dx_, ds_, shifted_set_);
+    state.workspace.start().set_contact_set(shifted_set_);
   }
 
   /// Solves one patch in approach control and fills its forces and stiffness.
@@ -502,13 +418,6 @@ class WheelsetContact {
       state.solver = detail::no_solver;
     }
   }
-
-  /// Elements added at least on every side when a patch needs a new box.
-  static constexpr Eigen::Index box_margin = 2;
-  /// A new box's sides are multiples of this many elements, so that a run meets few grid
-  /// sizes (each a solver with its tables and caches): 58 sizes became 12 along the
-  /// trajectory benchmark (docs/performance.md §8).
-  static constexpr Eigen::Index box_quantum = 8;
 
   Track track_;
   Wheelset wheelset_;
