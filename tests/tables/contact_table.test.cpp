@@ -35,18 +35,21 @@ std::vector<double> graded_axis(double first, double last, int count, double gro
   return nodes;
 }
 
-/// One pair; outputs field(y, yaw, load) and 2·field + 1; every case of topology `code(i)` by its y index.
+/// Topology code of a case by its y index i and yaw index j.
+using Code = std::function<std::int32_t(std::size_t i, std::size_t j)>;
+
+/// One pair; outputs field(y, yaw, load) and 2·field + 1; every case of topology `code(i, j)`.
 ContactTable table_of(const TableAxes& axes, const Field& field,
-                      const std::function<std::int32_t(std::size_t)>& code = [](std::size_t) { return 0; }) {
+                      const Code& code = [](std::size_t, std::size_t) { return 0; }) {
   std::vector<double> values;
   std::vector<std::int32_t> topology;
   for (double load : axes.load_n)
-    for (double yaw : axes.yaw_rad)
+    for (std::size_t j = 0; j < axes.yaw_rad.size(); ++j)
       for (std::size_t i = 0; i < axes.lateral_shift_m.size(); ++i) {
-        const double f = field(axes.lateral_shift_m[i], yaw, load);
+        const double f = field(axes.lateral_shift_m[i], axes.yaw_rad[j], load);
         values.push_back(f);
         values.push_back(2 * f + 1);
-        topology.push_back(code(i));
+        topology.push_back(code(i, j));
       }
   return ContactTable(axes, {"S1002/UIC60"}, {"fn", "twice"}, {"N", "N"}, values, topology);
 }
@@ -147,7 +150,7 @@ TEST_CASE("The topology guard: no blend across a change of patch count", "[table
   const Field field = [](double y, double yaw, double load) { return 1e4 + 1e6 * y * y + 1e3 * yaw + 0.1 * load; };
   const TableAxes axes = example_axes();
   const std::size_t change = 8;  // cases from y index 9 on have another code (say, a flange patch)
-  auto code = [&](std::size_t i) { return std::int32_t(i <= change ? 1 : 2); };
+  auto code = [&](std::size_t i, std::size_t) { return std::int32_t(i <= change ? 1 : 2); };
   // Beyond the change the values jump: a blend would show.
   const Field jumped = [&](double y, double yaw, double load) {
     return y > axes.lateral_shift_m[change] ? 1e9 : field(y, yaw, load);
@@ -180,19 +183,13 @@ TEST_CASE("The guard along y is per line: a change in one yaw line leaves its ne
   const Field field = [](double y, double yaw, double load) { return 1e4 + 1e6 * y * y + 1e3 * yaw + 0.1 * load; };
   const TableAxes axes = example_axes();
   const std::size_t changed_line = 2, change = 8;
+  const Code code = [&](std::size_t i, std::size_t j) { return std::int32_t(j == changed_line && i >= change ? 2 : 1); };
   auto table_with = [&](double beyond) {
-    std::vector<double> values;
-    std::vector<std::int32_t> topology;
-    for (double load : axes.load_n)
-      for (std::size_t j = 0; j < axes.yaw_rad.size(); ++j)
-        for (std::size_t i = 0; i < axes.lateral_shift_m.size(); ++i) {
-          const bool across = j == changed_line && i >= change;
-          const double f = across ? beyond : field(axes.lateral_shift_m[i], axes.yaw_rad[j], load);
-          values.push_back(f);
-          values.push_back(2 * f + 1);
-          topology.push_back(across ? 2 : 1);
-        }
-    return ContactTable(axes, {"S1002/UIC60"}, {"fn", "twice"}, {"N", "N"}, values, topology);
+    const Field held = [&](double y, double yaw, double load) {
+      const bool across = yaw == axes.yaw_rad[changed_line] && y >= axes.lateral_shift_m[change];
+      return across ? beyond : field(y, yaw, load);
+    };
+    return table_of(axes, held, code);
   };
   const ContactTable high = table_with(1e9), low = table_with(-5e8);
   const double load = 9e4;
@@ -212,7 +209,7 @@ TEST_CASE("The guard along y is per line: a change in one yaw line leaves its ne
 TEST_CASE("Failed cases are never interpolated", "[table]") {
   const Field field = [](double y, double, double) { return 1 + y; };
   const TableAxes axes = example_axes();
-  const ContactTable table = table_of(axes, field, [](std::size_t i) { return std::int32_t(i >= 11 ? -1 : 0); });
+  const ContactTable table = table_of(axes, field, [](std::size_t i, std::size_t) { return std::int32_t(i >= 11 ? -1 : 0); });
   const auto& y = axes.lateral_shift_m;
   lookup(table, 0.5 * (y[10] + y[11]), 0.01, 1e5, TableInterpolation::pchip, TableLookupStatus::topology_change);
   lookup(table, 0.5 * (y[11] + y[12]), 0.01, 1e5, TableInterpolation::multilinear, TableLookupStatus::failed_case);
@@ -262,7 +259,7 @@ TEST_CASE("A table refuses bad arrays, naming them", "[table]") {
 TEST_CASE("The export file round-trips bit for bit and refuses what it is not", "[table]") {
   const Field field = [](double y, double yaw, double load) { return std::cos(100 * y) + yaw * load; };
   const TableAxes axes = example_axes();
-  const ContactTable table = table_of(axes, field, [](std::size_t i) { return std::int32_t(i % 3 == 0 ? -1 : 2); });
+  const ContactTable table = table_of(axes, field, [](std::size_t i, std::size_t) { return std::int32_t(i % 3 == 0 ? -1 : 2); });
   const std::string path = "contact_table_test.fntable";
   fastnorm::write_contact_table(table, path);
   const ContactTable read = fastnorm::read_contact_table(path);

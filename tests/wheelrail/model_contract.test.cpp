@@ -30,6 +30,17 @@ wr::WheelsetPose pressed_pose() {
   return pose;
 }
 
+// Σ N cos δ over `patches`, added to `vertical`: the vertical force the rails carry (N), as
+// the equilibrium sums it.
+double vertical_force(const std::vector<wr::PatchContact>& patches, double vertical = 0) {
+  for (const auto& patch : patches) vertical += patch.normal_force * std::cos(patch.patch.frame.inclination);
+  return vertical;
+}
+
+double vertical_force(const wr::WheelsetContactResult& result) {
+  return vertical_force(result.wheels[1].patches, vertical_force(result.wheels[0].patches));
+}
+
 void check_same_patches(const wr::WheelsetContactResult& named, const wr::WheelsetContactResult& any) {
   for (std::size_t w = 0; w < 2; ++w) {
     REQUIRE(named.wheels[w].patches.size() == any.wheels[w].patches.size());
@@ -158,10 +169,7 @@ TEST_CASE("The equilibrium of a given model is that model's own", "[wheelrail][m
   // Evaluated again at the pose found, the model carries the load to the force tolerance.
   const auto& again = model.evaluate(found.pose);
   REQUIRE(again.ok());
-  double vertical = 0;
-  for (const auto& wheel : again.wheels) {
-    for (const auto& patch : wheel.patches) vertical += patch.normal_force * std::cos(patch.patch.frame.inclination);
-  }
+  const double vertical = vertical_force(again);
   CHECK(std::abs(vertical - load) <= wr::EquilibriumOptions().force_tolerance * load);
   // A model without stiffness cannot drive Newton.
   auto options = coarse("norm");
@@ -410,10 +418,7 @@ TEST_CASE("A warm model's equilibrium tries every pose from the model's state", 
   // pose's contact sets), it carries the load as the search found.
   const auto& again = model.evaluate(found.pose);
   REQUIRE(again.ok());
-  double vertical = 0;
-  for (const auto& wheel : again.wheels) {
-    for (const auto& patch : wheel.patches) vertical += patch.normal_force * std::cos(patch.patch.frame.inclination);
-  }
+  const double vertical = vertical_force(again);
   CHECK(vertical - load == Approx(found.vertical_residual).margin(1e-9 * load));
 }
 
@@ -435,8 +440,7 @@ TEST_CASE("Where the model's force jumps across the load the search stops at its
   CHECK(found.iterations < 12);
   // The best pose is given with its own patches and residuals, within the jump.
   REQUIRE(found.patches.size() == 2);
-  double vertical = 0;
-  for (const auto& patch : found.patches) vertical += patch.normal_force * std::cos(patch.patch.frame.inclination);
+  const double vertical = vertical_force(found.patches);
   CHECK(found.vertical_force == Approx(vertical).epsilon(1e-14));
   CHECK(found.vertical_residual == Approx(vertical - load).margin(1e-9 * load));
   CHECK(std::abs(found.vertical_residual) > wr::EquilibriumOptions().force_tolerance * load);
@@ -444,10 +448,5 @@ TEST_CASE("Where the model's force jumps across the load the search stops at its
   CHECK(found.roll_residual != 0);
   // They are the pose's: a new model (cold, as this one) gives the same force there.
   wr::WheelsetContact<fastnorm::ReducedSolver<fastnorm::EllipticBasis>> fresh(wr::Track(), wr::Wheelset(), options);
-  const auto& at_best = fresh.evaluate(found.pose);
-  double fresh_vertical = 0;
-  for (const auto& wheel : at_best.wheels) {
-    for (const auto& patch : wheel.patches) fresh_vertical += patch.normal_force * std::cos(patch.patch.frame.inclination);
-  }
-  CHECK(fresh_vertical == Approx(found.vertical_force).epsilon(1e-12));
+  CHECK(vertical_force(fresh.evaluate(found.pose)) == Approx(found.vertical_force).epsilon(1e-12));
 }
