@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "fastnorm/detail/anderson_mixing.hpp"
 #include "fastnorm/detail/memory_check.hpp"
 #include "fastnorm/error.hpp"
 #include "fastnorm/grid.hpp"
@@ -37,48 +38,59 @@ struct TangentialOptions {
 
 namespace detail {
 
-/// The steady-rolling operator, D(di, dj) = [C(di, dj) − C(di + e, dj)]/dx with e = +1
-/// (leading edge at +x) or −1: the slip's elastic part, the discrete −∂u/∂x
-/// = (u_I − u_upstream)/dx, at an element is Σ D(i − i', j − j') p(i', j')
-/// (docs/tangential.md Eq. (T6)). Stored for every offset
-/// |di| ≤ mx − 1, |dj| ≤ my − 1, column-major in di, so a change of the traction at one
-/// element moves a whole row of the grid by a slice of each table column.
+/// The steady-rolling operator in difference variables. With q_K = p_K − p_K⁺ the traction
+/// of an element minus its upstream neighbour's (the element on the leading-edge side; p is
+/// zero outside the contact, so an exterior element just downstream of contact carries
+/// q = −p of its upstream neighbour), the elastic part of the slip is
+/// (u_I − u_I⁺)/dx = Σ_K C(I − K) q_K/dx (docs/tangential.md Eq. (T7)). Stored as C/dx for
+/// every offset |di| ≤ mx, |dj| ≤ my − 1 (a q just beyond the grid's downstream edge is
+/// |di| = mx away from the far column), column-major in di, so a change of one q moves a
+/// whole row of the grid by a slice of each table column; and, for the commonest change
+/// (one element's traction alone, +Δ on its q and −Δ on its downstream neighbour's), the
+/// same difference D(di) = [C(di) − C(di + e)]/dx of (T6) in one slice.
 template <typename Scalar>
 struct RollingOperator {
   using Matrix = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;
   Eigen::Index mx = 0, my = 0;
-  Matrix xx, xy, yy;  // (2mx − 1) × (2my − 1): row mx − 1 + di, column my − 1 + dj
+  Matrix xx, xy, yy;           // C/dx, (2mx + 1) × (2my − 1): row mx + di, column my − 1 + dj
+  Matrix one_xx, one_xy, one_yy;  // D, the same layout; row mx + di for di + e within |di| ≤ mx
 
   RollingOperator(const TangentialInfluenceTable<Scalar>& influence, RollingDirection direction)
       : mx(influence.grid().mx()),
         my(checked_rows(influence.grid())),
-        xx(2 * mx - 1, 2 * my - 1),
-        xy(2 * mx - 1, 2 * my - 1),
-        yy(2 * mx - 1, 2 * my - 1) {
+        xx(2 * mx + 1, 2 * my - 1),
+        xy(2 * mx + 1, 2 * my - 1),
+        yy(2 * mx + 1, 2 * my - 1) {
     const Grid<Scalar>& grid = influence.grid();
-    const Eigen::Index upstream = direction == RollingDirection::positive_x ? 1 : -1;
-    // C from the table; one element past it (|di| = mx, read only by elements on the
-    // upstream edge, which the solver refuses) by the closed form.
-    auto at = [&](Eigen::Index di, Eigen::Index dj) {
-      if (std::abs(di) < mx) return influence.at_offset(di, dj);
-      return cerruti_coefficients<Scalar>(static_cast<Scalar>(di) * grid.dx(), static_cast<Scalar>(dj) * grid.dy(),
-                                          grid.dx() / 2, grid.dy() / 2, influence.shear_modulus(),
-                                          influence.poisson_ratio());
-    };
     for (Eigen::Index dj = -(my - 1); dj <= my - 1; ++dj) {
-      for (Eigen::Index di = -(mx - 1); di <= mx - 1; ++di) {
-        const auto here = at(di, dj), there = at(di + upstream, dj);
-        xx(mx - 1 + di, my - 1 + dj) = (here.xx - there.xx) / grid.dx();
-        xy(mx - 1 + di, my - 1 + dj) = (here.xy - there.xy) / grid.dx();
-        yy(mx - 1 + di, my - 1 + dj) = (here.yy - there.yy) / grid.dx();
+      for (Eigen::Index di = -mx; di <= mx; ++di) {
+        // C from the table; at |di| = mx, one element past it, by the closed form.
+        const auto c = std::abs(di) < mx
+                           ? influence.at_offset(di, dj)
+                           : cerruti_coefficients<Scalar>(static_cast<Scalar>(di) * grid.dx(),
+                                                          static_cast<Scalar>(dj) * grid.dy(), grid.dx() / 2,
+                                                          grid.dy() / 2, influence.shear_modulus(),
+                                                          influence.poisson_ratio());
+        xx(mx + di, my - 1 + dj) = c.xx / grid.dx();
+        xy(mx + di, my - 1 + dj) = c.xy / grid.dx();
+        yy(mx + di, my - 1 + dj) = c.yy / grid.dx();
       }
     }
+    // D(di) = C(di) − C(di + e): row r of D is row r of C minus row r + e.
+    const Eigen::Index rows = 2 * mx, first = direction == RollingDirection::positive_x ? 0 : 1;
+    one_xx = Matrix::Zero(2 * mx + 1, 2 * my - 1);
+    one_xy = Matrix::Zero(2 * mx + 1, 2 * my - 1);
+    one_yy = Matrix::Zero(2 * mx + 1, 2 * my - 1);
+    const Eigen::Index e = direction == RollingDirection::positive_x ? 1 : -1;
+    one_xx.middleRows(first, rows) = xx.middleRows(first, rows) - xx.middleRows(first + e, rows);
+    one_xy.middleRows(first, rows) = xy.middleRows(first, rows) - xy.middleRows(first + e, rows);
+    one_yy.middleRows(first, rows) = yy.middleRows(first, rows) - yy.middleRows(first + e, rows);
   }
 
  private:
-  /// my, once the three tables are known to fit the machine's memory.
+  /// my, once the six tables are known to fit the machine's memory.
   static Eigen::Index checked_rows(const Grid<Scalar>& grid) {
-    check_memory(3 * (2 * static_cast<double>(grid.mx()) - 1) * (2 * static_cast<double>(grid.my()) - 1), sizeof(Scalar),
+    check_memory(6 * (2 * static_cast<double>(grid.mx()) + 1) * (2 * static_cast<double>(grid.my()) - 1), sizeof(Scalar),
                  "SteadyRollingSolver: grid mx x my");
     return grid.my();
   }
@@ -119,16 +131,17 @@ ElementTraction<Scalar> coulomb_element(Scalar rx, Scalar ry, Scalar bound, Scal
 }  // namespace detail
 
 /// Steady rolling with Coulomb friction on the patches of one grid: the solver keeps the
-/// tangential influence table and the steady-rolling operator D of its grid and rolling
+/// tangential influence table and the steady-rolling operator of its grid and rolling
 /// direction (both h-independent), and solves for any normal solution on that grid.
 ///
 /// Discretisation (docs/tangential.md §6): in each contact element I the slip is
 /// s_I = w_I + Σ_J D_IJ p_J (Eq. (T6)), with the spin term of w_y evaluated a sixth of an
 /// element towards the leading edge as CONTACT does; in adhesion s_I = 0 and
 /// |p_I| ≤ μ p_n,I, in slip p_I = −μ p_n,I s_I/|s_I|. Each sweep solves every element's
-/// 2 × 2 problem with the others fixed, from the leading edge to the trailing one, and
-/// updates the slips of the contact rows by the change (Gauss–Seidel with a relaxed local
-/// coefficient, docs/tangential.md §7).
+/// 2 × 2 problem with the others fixed, from the leading edge to the trailing one, moving the
+/// adhesion stretch behind the element with it, and updates the slips of the contact rows by
+/// the change (nonlinear Gauss–Seidel in the differences of Eq. (T7), Anderson-mixed once
+/// the adhesion and slip areas hold, docs/tangential.md §7).
 ///
 /// **Example**
 /// @code
@@ -169,8 +182,8 @@ class SteadyRollingSolver {
     const detail::RollingOperator<Scalar>& rolling = *rolling_;
     const Index mx = grid.mx(), my = grid.my(), n = grid.size();
     detail::check_tangential_input(grid, normal, friction, creepage, "SteadyRollingSolver::solve");
-    const bool positive = direction_ == RollingDirection::positive_x;
-    const Index upstream_column = positive ? mx - 1 : 0;
+    const Index upstream = direction_ == RollingDirection::positive_x ? 1 : -1;  // towards the leading edge
+    const Index upstream_column = upstream > 0 ? mx - 1 : 0;
 
     TangentialSolution<Scalar> answer = detail::zero_answer<Scalar>(n);
     Vector bound = Vector::Zero(n);  // μ p_n
@@ -203,66 +216,110 @@ class SteadyRollingSolver {
       first_column[j] = std::min(first_column[j], grid.i_of(k));
       last_column[j] = std::max(last_column[j], grid.i_of(k));
     }
-    // elastic = D p over the contact rows, kept up to date as tractions change.
-    Vector elastic_x = Vector::Zero(n), elastic_y = Vector::Zero(n);
-    auto add_change = [&](Index source, Scalar change_x, Scalar change_y) {
-      const Index i = grid.i_of(source), j = grid.j_of(source);
+    // iterate = (p_x, p_y, elastic_x, elastic_y), with elastic = Σ C q/dx = D p over the
+    // contact rows (T7), kept up to date as tractions change. Moving p by `change` on a
+    // stretch of row j from column `from` down to the column before `to` changes q by
+    // +change at `from` and −change at `to` (which may lie one column beyond the grid): both
+    // move each contact row by a slice of one table column.
+    Vector iterate = Vector::Zero(4 * n);
+    auto traction_x = iterate.segment(0, n), traction_y = iterate.segment(n, n);
+    auto elastic_x = iterate.segment(2 * n, n), elastic_y = iterate.segment(3 * n, n);
+    auto shift_stretch = [&](Index from, Index to, Index j, Scalar change_x, Scalar change_y) {
+      for (Index moved = from; moved != to; moved -= upstream) {
+        traction_x(moved + mx * j) += change_x;
+        traction_y(moved + mx * j) += change_y;
+      }
+      const bool alone = to == from - upstream;
       for (Index row = 0; row < my; ++row) {
         const Index first = first_column[static_cast<std::size_t>(row)], length = last_column[static_cast<std::size_t>(row)] - first + 1;
         if (length <= 0) continue;
-        // D(i_t − i, row − j) for i_t = first … last: a slice of one column of each table.
-        const Index column = my - 1 + row - j, offset = mx - 1 + first - i;
-        elastic_x.segment(row * mx + first, length) += change_x * rolling.xx.col(column).segment(offset, length) +
-                                                       change_y * rolling.xy.col(column).segment(offset, length);
-        elastic_y.segment(row * mx + first, length) += change_x * rolling.xy.col(column).segment(offset, length) +
-                                                       change_y * rolling.yy.col(column).segment(offset, length);
+        // C(i_t − from, row − j) − C(i_t − to, row − j) for i_t = first … last
+        const Index column = my - 1 + row - j, at_from = mx + first - from, at_to = mx + first - to;
+        auto target_x = elastic_x.segment(row * mx + first, length), target_y = elastic_y.segment(row * mx + first, length);
+        if (alone) {
+          const auto xx = rolling.one_xx.col(column).segment(at_from, length);
+          const auto xy = rolling.one_xy.col(column).segment(at_from, length);
+          const auto yy = rolling.one_yy.col(column).segment(at_from, length);
+          target_x += change_x * xx + change_y * xy;
+          target_y += change_x * xy + change_y * yy;
+        } else {
+          const auto xx = rolling.xx.col(column), xy = rolling.xy.col(column), yy = rolling.yy.col(column);
+          const auto dxx = xx.segment(at_from, length) - xx.segment(at_to, length);
+          const auto dxy = xy.segment(at_from, length) - xy.segment(at_to, length);
+          const auto dyy = yy.segment(at_from, length) - yy.segment(at_to, length);
+          target_x += change_x * dxx + change_y * dxy;
+          target_y += change_x * dxy + change_y * dyy;
+        }
       }
     };
-    // The local coefficient of an element's own traction: relaxation · C_II/dx, consistent at
-    // the fixed point whatever its value; D's own diagonal, (C(0) − C(e))/dx, makes the
-    // sweeps diverge (docs/tangential.md §7, measured), so does a relaxation below 3 on the
-    // spin case of peer-tangential. A sweep whose change grows tenfold past the smallest one
-    // met restarts the solve from zero tractions with a relaxation 1.5 times larger.
-    const auto own = influence_->at_offset(0, 0);
-    Scalar relaxation = 3;
-    Scalar smallest_change = std::numeric_limits<Scalar>::infinity();
+
+    // Each sweep visits the contact rows, each from the leading edge to the trailing one. At
+    // an element it moves the traction of the element and of the adhesion stretch behind it
+    // (down to the first element in slip or outside the contact, whose traction stays), so
+    // that the element meets Coulomb's conditions with the rest fixed; the local coefficient
+    // is ρ·(C(0) − C(stretch))/dx in adhesion and ρ·C(0)/dx in slip (docs/tangential.md §7).
+    // Once a sweep leaves every element's state as it found it, the sweeps are Anderson-mixed.
+    // A sweep whose change grows tenfold past the smallest met, or a smallest change that
+    // does not halve in 40 sweeps, restarts the solve from zero with ρ 1.5 times larger.
+    const Scalar own_x = rolling.xx(mx, my - 1), own_y = rolling.yy(mx, my - 1);
+    Scalar relaxation = Scalar(1.5);
+    detail::AndersonMixing<Scalar> mixing(4 * n, 2 * n, 6);
+    Vector before(2 * n), residual(2 * n);
+    Eigen::Matrix<TractionState, Eigen::Dynamic, 1> states_before;
+    Scalar smallest_change = std::numeric_limits<Scalar>::infinity(), checkpoint_change = smallest_change;
+    int checkpoint_sweep = 0;
     answer.sweeps = 0;
     bool converged = false;
     while (answer.sweeps < options_.max_sweeps && !converged) {
       ++answer.sweeps;
-      const Scalar local_x = relaxation * own.xx / grid.dx(), local_y = relaxation * own.yy / grid.dx();
-      Scalar largest_change = 0;
-      for (Index step = 0; step < mx; ++step) {
-        const Index i = positive ? mx - 1 - step : step;  // from the leading edge
-        for (Index j = 0; j < my; ++j) {
+      before = iterate.head(2 * n);
+      states_before = answer.state;
+      for (Index j = 0; j < my; ++j) {
+        if (last_column[static_cast<std::size_t>(j)] < 0) continue;
+        for (Index i = upstream_column; i >= 0 && i < mx; i -= upstream) {
           const Index k = i + mx * j;
           if (answer.state(k) == TractionState::exterior) continue;
-          // The slip is s = r + local·p, r the rest with this element's traction taken out.
-          const Scalar px = answer.traction_x(k), py = answer.traction_y(k);
-          const Scalar rx = rigid_x(k) + elastic_x(k) - local_x * px, ry = rigid_y(k) + elastic_y(k) - local_y * py;
-          const auto local = detail::coulomb_element(rx, ry, bound(k), local_x, local_y);
+          Index end = i - upstream;  // the first element behind that keeps its traction
+          while (end >= 0 && end < mx && answer.state(end + mx * j) == TractionState::adhesion) end -= upstream;
+          const bool slip = answer.state(k) == TractionState::slip;
+          const Scalar local_x = relaxation * (own_x - (slip ? 0 : rolling.xx(mx + i - end, my - 1)));
+          const Scalar local_y = relaxation * (own_y - (slip ? 0 : rolling.yy(mx + i - end, my - 1)));
+          const Scalar px = traction_x(k), py = traction_y(k);
+          const auto local = detail::coulomb_element(rigid_x(k) + elastic_x(k) - local_x * px,
+                                                     rigid_y(k) + elastic_y(k) - local_y * py, bound(k), local_x, local_y);
           answer.state(k) = local.state;
-          const Scalar change_x = local.x - px, change_y = local.y - py;
-          if (change_x != 0 || change_y != 0) {
-            answer.traction_x(k) = local.x;
-            answer.traction_y(k) = local.y;
-            add_change(k, change_x, change_y);
-            largest_change = std::max(largest_change, std::max(std::abs(change_x), std::abs(change_y)));
-          }
+          if (local.x != px || local.y != py) shift_stretch(i, end, j, local.x - px, local.y - py);
         }
       }
+      residual = iterate.head(2 * n) - before;
+      const Scalar largest_change = residual.cwiseAbs().maxCoeff();
       answer.residual = largest_change / scale;
       converged = answer.residual <= options_.tolerance;
+      if (converged) break;
       smallest_change = std::min(smallest_change, largest_change);
-      if (!converged && largest_change > 10 * smallest_change) {  // diverging: restart, more relaxed
+      bool stagnating = false;
+      if (answer.sweeps - checkpoint_sweep >= 40) {
+        stagnating = smallest_change > checkpoint_change / 2;
+        checkpoint_change = smallest_change;
+        checkpoint_sweep = answer.sweeps;
+      }
+      if (stagnating || largest_change > 10 * smallest_change) {  // restart, more relaxed
         relaxation *= Scalar(1.5);
-        smallest_change = std::numeric_limits<Scalar>::infinity();
-        answer.traction_x.setZero();
-        answer.traction_y.setZero();
-        elastic_x.setZero();
-        elastic_y.setZero();
+        smallest_change = checkpoint_change = std::numeric_limits<Scalar>::infinity();
+        checkpoint_sweep = answer.sweeps;
+        iterate.setZero();
+        for (Index k = 0; k < n; ++k) {
+          if (answer.state(k) != TractionState::exterior) answer.state(k) = TractionState::adhesion;
+        }
+        mixing.reset();
+      } else if ((answer.state.array() == states_before.array()).all()) {
+        mixing.mix(iterate, residual);
+      } else {
+        mixing.reset();
       }
     }
+    answer.traction_x = traction_x;
+    answer.traction_y = traction_y;
 
     for (Index k = 0; k < n; ++k) {
       if (answer.state(k) != TractionState::slip) continue;

@@ -3,6 +3,8 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <Eigen/LU>
+#include <fastnorm/detail/anderson_mixing.hpp>
 #include <fastnorm/norm_solver.hpp>
 #include <fastnorm/tangential_solver.hpp>
 #include <map>
@@ -222,4 +224,37 @@ TEST_CASE("An element's Coulomb problem is solved exactly", "[tangential]") {
   }
   CHECK(slipping > 20);
   CHECK(slipping < 180);
+}
+
+TEST_CASE("Anderson mixing solves a linear fixed point as GMRES does, in dimension + 1 steps", "[tangential]") {
+  // x = M x + b with M a contraction of spectral radius 0.9 in dimension 5 (independent truth:
+  // (I − M)⁻¹ b by LU). With memory 5 the mixed iteration is GMRES on (I − M) x = b (Walker &
+  // Ni 2011) and is exact after 6 evaluations; plain iteration is still off by 0.9⁶ of the way.
+  const Eigen::Index dimension = 5;
+  Eigen::MatrixXd rotation = Eigen::MatrixXd::Zero(dimension, dimension);
+  for (Eigen::Index i = 0; i < dimension; ++i) rotation(i, (i + 1) % dimension) = 1;
+  const Eigen::VectorXd spectrum = (Eigen::VectorXd(dimension) << 0.9, -0.7, 0.5, 0.3, -0.1).finished();
+  const Eigen::MatrixXd basis = Eigen::MatrixXd::Identity(dimension, dimension) + 0.3 * rotation;
+  const Eigen::MatrixXd map = basis * spectrum.asDiagonal() * basis.inverse();
+  const Eigen::VectorXd offset = (Eigen::VectorXd(dimension) << 1, -2, 0.5, 3, -1).finished();
+  const Eigen::VectorXd solution =
+      (Eigen::MatrixXd::Identity(dimension, dimension) - map).partialPivLu().solve(offset);
+
+  fastnorm::detail::AndersonMixing<double> mixing(dimension, dimension, dimension);
+  Eigen::VectorXd mixed = Eigen::VectorXd::Zero(dimension), plain = mixed;
+  for (int evaluation = 0; evaluation < 6; ++evaluation) {
+    Eigen::VectorXd output = map * mixed + offset;
+    const Eigen::VectorXd residual = output - mixed;
+    mixing.mix(output, residual);
+    mixed = output;
+    plain = map * plain + offset;
+  }
+  CHECK((mixed - solution).norm() <= 1e-9 * solution.norm());
+  CHECK((plain - solution).norm() >= 0.1 * solution.norm());
+
+  // After a reset the history is gone: one evaluation is plain iteration again.
+  mixing.reset();
+  Eigen::VectorXd start = Eigen::VectorXd::Zero(dimension), output = map * start + offset;
+  mixing.mix(output, output - start);
+  CHECK(output.isApprox(offset));
 }

@@ -1,0 +1,57 @@
+#pragma once
+/// @file anderson_mixing.hpp
+/// Anderson acceleration of a fixed-point iteration x ← G(x) (Walker & Ni, SIAM J. Numer.
+/// Anal. 49 (2011), "type II" with memory m): from the last m differences of the outputs G
+/// and of the residuals f = G(x) − x, the next iterate is G(x_k) − ΔG γ with γ the least-squares
+/// solution of ΔF γ ≈ f_k. Used by the steady-rolling sweeps once their element states have
+/// settled (docs/tangential.md §7); the least-squares problem is Eigen's column-pivoting QR.
+
+#include <Eigen/Core>
+#include <Eigen/QR>
+
+namespace fastnorm::detail {
+
+template <typename Scalar>
+class AndersonMixing {
+ public:
+  using Index = Eigen::Index;
+  using Vector = Eigen::Matrix<Scalar, Eigen::Dynamic, 1>;
+  using Matrix = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;
+
+  /// `output_size`: the length of G(x); `residual_size`: of f; `memory`: m ≥ 1.
+  AndersonMixing(Index output_size, Index residual_size, Index memory)
+      : output_changes_(output_size, memory),
+        residual_changes_(residual_size, memory),
+        last_output_(output_size),
+        last_residual_(residual_size) {}
+
+  /// Forgets the history: the next call of mix only records its pair.
+  void reset() { stored_ = 0, have_last_ = false; }
+
+  /// Records the iteration's output and residual and replaces `output` by the mixed next
+  /// iterate (left unchanged on the first call after a reset). The columns of the history are
+  /// kept in a ring: the least-squares solution does not depend on their order.
+  void mix(Eigen::Ref<Vector> output, const Vector& residual) {
+    if (have_last_) {
+      const Index column = next_ % output_changes_.cols();
+      output_changes_.col(column) = output - last_output_;
+      residual_changes_.col(column) = residual - last_residual_;
+      ++next_;
+      stored_ = std::min<Index>(stored_ + 1, output_changes_.cols());
+    }
+    last_output_ = output;
+    last_residual_ = residual;
+    have_last_ = true;
+    if (stored_ == 0) return;
+    const Vector weights = residual_changes_.leftCols(stored_).colPivHouseholderQr().solve(residual);
+    output -= output_changes_.leftCols(stored_) * weights;
+  }
+
+ private:
+  Matrix output_changes_, residual_changes_;  // one column per remembered step
+  Vector last_output_, last_residual_;
+  Index stored_ = 0, next_ = 0;
+  bool have_last_ = false;
+};
+
+}  // namespace fastnorm::detail
