@@ -3,8 +3,10 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <filesystem>
 #include <Eigen/LU>
 #include <fastnorm/detail/anderson_mixing.hpp>
+#include <fastnorm/case_file.hpp>
 #include <fastnorm/norm_solver.hpp>
 #include <fastnorm/tangential_solver.hpp>
 #include <map>
@@ -12,6 +14,7 @@
 #include <vector>
 
 #include "support/hertz_rolling.hpp"
+#include "support/peer_cases.hpp"
 
 using Catch::Matchers::Contains;
 
@@ -122,6 +125,65 @@ TEST_CASE("Steady rolling gives CONTACT's two-dimensional Carter example", "[tan
   CHECK(std::abs(answer.force_x - number(row, "fx_N")) <= 0.015 * mu * fn);
   CHECK(std::abs(static_cast<double>(answer.adhesion_elements) - number(row, "nadh")) <= 1);
   CHECK(std::abs(static_cast<double>(answer.slip_elements) - number(row, "nslip")) <= 1);
+}
+
+TEST_CASE("Steady rolling solves the discrete problem on a wheel-rail patch across partial slip", "[tangential][peer]") {
+  // CONTACT's wr_y6.0_psi0.0_right patch (814 elements in contact), (ξ, η, φ) = s·(10⁻³,
+  // 5·10⁻⁴, 0.5 rad/m), μ = 0.3: the solver before 2026-11-27 stopped at its sweep limit for
+  // s from 0.19 to 0.65. The answer is checked against the discrete conditions themselves,
+  // the slip (T6) summed directly element by element from the influence table (not the
+  // solver's differences): in adhesion s = 0 and |p| ≤ μ p_n, in slip |p| = μ p_n against s.
+  const std::string path = fastnorm::test::peer_cases_dir() + "/wr_y6.0_psi0.0_right.case";
+  if (!std::filesystem::is_regular_file(path)) return fastnorm::test::reference_data_missing("peer-cases/wr_y6.0_psi0.0_right.case");
+  const auto stored = fastnorm::read_case_file(path);
+  const auto normal = fastnorm::NormSolver<>(stored.grid, stored.material).solve(stored.undeformed_distance, stored.loading);
+  REQUIRE(normal.ok());
+  const fastnorm::SteadyRollingSolver<> rolling(stored.grid, stored.material);
+  const auto& grid = stored.grid;
+  const double mu = 0.3, shift = fastnorm::detail::spin_shift(grid, fastnorm::RollingDirection::positive_x);
+  auto coefficients = [&](Eigen::Index di, Eigen::Index dj) {
+    if (std::abs(di) < grid.mx()) return rolling.influence().at_offset(di, dj);
+    return fastnorm::cerruti_coefficients<double>(static_cast<double>(di) * grid.dx(), static_cast<double>(dj) * grid.dy(),
+                                                  grid.dx() / 2, grid.dy() / 2, rolling.influence().shear_modulus(),
+                                                  rolling.influence().poisson_ratio());
+  };
+  for (const double scale : {0.2, 0.5}) {
+    const auto answer = rolling.solve(normal, mu, creepage(1e-3 * scale, 5e-4 * scale, 0.5 * scale));
+    INFO("s = " << scale << ": " << answer.message << ", " << answer.sweeps << " sweeps, adhesion "
+                << answer.adhesion_elements << ", slip " << answer.slip_elements);
+    REQUIRE(answer.ok());
+    CHECK(answer.adhesion_elements > 100);
+    CHECK(answer.slip_elements > 20);
+    const double rigid_scale = 1e-3 * scale;  // |ξ|, the size of the rigid slip
+    double worst_adhesion_slip = 0, worst_bound = 0, worst_direction = 0;
+    for (Eigen::Index k = 0; k < grid.size(); ++k) {
+      if (answer.state(k) == fastnorm::TractionState::exterior) continue;
+      const Eigen::Index i = grid.i_of(k), j = grid.j_of(k);
+      double sx = 1e-3 * scale - 0.5 * scale * grid.y(j);
+      double sy = 5e-4 * scale + 0.5 * scale * (grid.x(i) + shift);
+      for (Eigen::Index source = 0; source < grid.size(); ++source) {
+        if (answer.state(source) == fastnorm::TractionState::exterior) continue;
+        const Eigen::Index di = i - grid.i_of(source), dj = j - grid.j_of(source);
+        const auto here = coefficients(di, dj), upstream = coefficients(di + 1, dj);
+        const double px = answer.traction_x(source), py = answer.traction_y(source);
+        sx += ((here.xx - upstream.xx) * px + (here.xy - upstream.xy) * py) / grid.dx();
+        sy += ((here.xy - upstream.xy) * px + (here.yy - upstream.yy) * py) / grid.dx();
+      }
+      const double bound = mu * normal.pressure(k), traction = std::hypot(answer.traction_x(k), answer.traction_y(k));
+      if (answer.state(k) == fastnorm::TractionState::adhesion) {
+        worst_adhesion_slip = std::max(worst_adhesion_slip, std::hypot(sx, sy) / rigid_scale);
+        worst_bound = std::max(worst_bound, traction / bound - 1);
+      } else {
+        worst_bound = std::max(worst_bound, std::abs(traction / bound - 1));
+        // p = −g s/|s|: the traction's direction against the slip's
+        const double cosine = -(answer.traction_x(k) * sx + answer.traction_y(k) * sy) / (traction * std::hypot(sx, sy));
+        worst_direction = std::max(worst_direction, 1 - cosine);
+      }
+    }
+    CHECK(worst_adhesion_slip <= 1e-6);
+    CHECK(worst_bound <= 1e-9);
+    CHECK(worst_direction <= 1e-6);
+  }
 }
 
 TEST_CASE("Large creepage saturates the traction bound against the rigid slip", "[tangential]") {
