@@ -257,7 +257,8 @@ class SteadyRollingSolver {
     // an element it moves the traction of the element and of the adhesion stretch behind it
     // (down to the first element in slip or outside the contact, whose traction stays), so
     // that the element meets Coulomb's conditions with the rest fixed; the local coefficient
-    // is ρ·(C(0) − C(stretch))/dx in adhesion and ρ·C(0)/dx in slip (docs/tangential.md §7).
+    // is the move's own, (C(0) − C(I − J))/dx with J the stretch's end, times a relaxation ρ
+    // (docs/tangential.md §7).
     // Once a sweep leaves every element's state as it found it, the sweeps are Anderson-mixed.
     // A sweep whose change grows tenfold past the smallest met, or a smallest change that
     // does not halve in 40 sweeps, restarts the solve from zero with ρ 1.5 times larger.
@@ -281,9 +282,8 @@ class SteadyRollingSolver {
           if (answer.state(k) == TractionState::exterior) continue;
           Index end = i - upstream;  // the first element behind that keeps its traction
           while (end >= 0 && end < mx && answer.state(end + mx * j) == TractionState::adhesion) end -= upstream;
-          const bool slip = answer.state(k) == TractionState::slip;
-          const Scalar local_x = relaxation * (own_x - (slip ? 0 : rolling.xx(mx + i - end, my - 1)));
-          const Scalar local_y = relaxation * (own_y - (slip ? 0 : rolling.yy(mx + i - end, my - 1)));
+          const Scalar local_x = relaxation * (own_x - rolling.xx(mx + i - end, my - 1));
+          const Scalar local_y = relaxation * (own_y - rolling.yy(mx + i - end, my - 1));
           const Scalar px = traction_x(k), py = traction_y(k);
           const auto local = detail::coulomb_element(rigid_x(k) + elastic_x(k) - local_x * px,
                                                      rigid_y(k) + elastic_y(k) - local_y * py, bound(k), local_x, local_y);
