@@ -77,11 +77,10 @@ struct RollingOperator {
       }
     }
     // D(di) = C(di) − C(di + e): row r of D is row r of C minus row r + e.
-    const Eigen::Index rows = 2 * mx, first = direction == RollingDirection::positive_x ? 0 : 1;
+    const Eigen::Index e = direction == RollingDirection::positive_x ? 1 : -1, rows = 2 * mx, first = e > 0 ? 0 : 1;
     one_xx = Matrix::Zero(2 * mx + 1, 2 * my - 1);
     one_xy = Matrix::Zero(2 * mx + 1, 2 * my - 1);
     one_yy = Matrix::Zero(2 * mx + 1, 2 * my - 1);
-    const Eigen::Index e = direction == RollingDirection::positive_x ? 1 : -1;
     one_xx.middleRows(first, rows) = xx.middleRows(first, rows) - xx.middleRows(first + e, rows);
     one_xy.middleRows(first, rows) = xy.middleRows(first, rows) - xy.middleRows(first + e, rows);
     one_yy.middleRows(first, rows) = yy.middleRows(first, rows) - yy.middleRows(first + e, rows);
@@ -220,7 +219,8 @@ class SteadyRollingSolver {
     // contact rows (T7), kept up to date as tractions change. Moving p by `change` on a
     // stretch of row j from column `from` down to the column before `to` changes q by
     // +change at `from` and −change at `to` (which may lie one column beyond the grid): both
-    // move each contact row by a slice of one table column.
+    // move each contact row by a slice of one table column of C, or together by one of D
+    // when the stretch is the element alone.
     Vector iterate = Vector::Zero(4 * n);
     auto traction_x = iterate.segment(0, n), traction_y = iterate.segment(n, n);
     auto elastic_x = iterate.segment(2 * n, n), elastic_y = iterate.segment(3 * n, n);
