@@ -125,6 +125,15 @@ class TangentialInfluenceTable {
     return {xx_(row, column), xy, yy_(row, column)};
   }
 
+  /// The coefficients for any offset: the table's within |di| < mx, |dj| < my, else the
+  /// closed form of docs/tangential.md §2 (the steady-rolling operator reads one element
+  /// past the grid).
+  TangentialCoefficients<Scalar> coefficients(Index di, Index dj) const {
+    if (std::abs(di) < grid_.mx() && std::abs(dj) < grid_.my()) return at_offset(di, dj);
+    return cerruti_coefficients<Scalar>(static_cast<Scalar>(di) * grid_.dx(), static_cast<Scalar>(dj) * grid_.dy(),
+                                        grid_.dx() / 2, grid_.dy() / 2, shear_modulus_, poisson_ratio_);
+  }
+
   /// The stored tables: xx()(mx − 1 + di, dj) = xx(di·dx, dj·dy) for |di| < mx, 0 ≤ dj < my;
   /// likewise yy() and xy() (xy for dj < 0 is −xy()(·, −dj)).
   const Matrix& xx() const { return xx_; }

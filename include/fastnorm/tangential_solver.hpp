@@ -64,13 +64,7 @@ struct RollingOperator {
     const Grid<Scalar>& grid = influence.grid();
     for (Eigen::Index dj = -(my - 1); dj <= my - 1; ++dj) {
       for (Eigen::Index di = -mx; di <= mx; ++di) {
-        // C from the table; at |di| = mx, one element past it, by the closed form.
-        const auto c = std::abs(di) < mx
-                           ? influence.at_offset(di, dj)
-                           : cerruti_coefficients<Scalar>(static_cast<Scalar>(di) * grid.dx(),
-                                                          static_cast<Scalar>(dj) * grid.dy(), grid.dx() / 2,
-                                                          grid.dy() / 2, influence.shear_modulus(),
-                                                          influence.poisson_ratio());
+        const auto c = influence.coefficients(di, dj);  // |di| = mx: one element past the table
         xx(mx + di, my - 1 + dj) = c.xx / grid.dx();
         xy(mx + di, my - 1 + dj) = c.xy / grid.dx();
         yy(mx + di, my - 1 + dj) = c.yy / grid.dx();
@@ -266,15 +260,14 @@ class SteadyRollingSolver {
     Scalar relaxation = Scalar(1.5);
     detail::AndersonMixing<Scalar> mixing(4 * n, 2 * n, 6);
     Vector before(2 * n), residual(2 * n);
-    Eigen::Matrix<TractionState, Eigen::Dynamic, 1> states_before;
     Scalar smallest_change = std::numeric_limits<Scalar>::infinity(), checkpoint_change = smallest_change;
     int checkpoint_sweep = 0;
     answer.sweeps = 0;
     bool converged = false;
-    while (answer.sweeps < options_.max_sweeps && !converged) {
+    while (answer.sweeps < options_.max_sweeps) {
       ++answer.sweeps;
       before = iterate.head(2 * n);
-      states_before = answer.state;
+      bool states_changed = false;
       for (Index j = 0; j < my; ++j) {
         if (last_column[static_cast<std::size_t>(j)] < 0) continue;
         for (Index i = upstream_column; i >= 0 && i < mx; i -= upstream) {
@@ -287,6 +280,7 @@ class SteadyRollingSolver {
           const Scalar px = traction_x(k), py = traction_y(k);
           const auto local = detail::coulomb_element(rigid_x(k) + elastic_x(k) - local_x * px,
                                                      rigid_y(k) + elastic_y(k) - local_y * py, bound(k), local_x, local_y);
+          states_changed = states_changed || local.state != answer.state(k);
           answer.state(k) = local.state;
           if (local.x != px || local.y != py) shift_stretch(i, end, j, local.x - px, local.y - py);
         }
@@ -312,7 +306,7 @@ class SteadyRollingSolver {
           if (answer.state(k) != TractionState::exterior) answer.state(k) = TractionState::adhesion;
         }
         mixing.reset();
-      } else if ((answer.state.array() == states_before.array()).all()) {
+      } else if (!states_changed) {
         mixing.mix(iterate, residual);
       } else {
         mixing.reset();

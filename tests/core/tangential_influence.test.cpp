@@ -137,6 +137,14 @@ TEST_CASE("Tangential tables agree with the normal table and their own closed fo
       CHECK(c.yy == Approx(direct.yy).epsilon(1e-12));
     }
   }
+  // coefficients(di, dj): the table's own values within it, the closed form one element past.
+  const auto inside = tangential.coefficients(3, -2), stored = tangential.at_offset(3, -2);
+  CHECK((inside.xx == stored.xx && inside.xy == stored.xy && inside.yy == stored.yy));
+  const Eigen::Index past = grid.mx();
+  const auto beyond = tangential.coefficients(-past, 4);
+  const auto closed = fastnorm::cerruti_coefficients(-static_cast<double>(past) * grid.dx(), 4 * grid.dy(), grid.dx() / 2,
+                                                     grid.dy() / 2, tangential.shear_modulus(), nu);
+  CHECK((beyond.xx == closed.xx && beyond.xy == closed.xy && beyond.yy == closed.yy));
 }
 
 TEST_CASE("Kalker's combined constants of two bodies", "[influence][tangential][material]") {

@@ -141,12 +141,6 @@ TEST_CASE("Steady rolling solves the discrete problem on a wheel-rail patch acro
   const fastnorm::SteadyRollingSolver<> rolling(stored.grid, stored.material);
   const auto& grid = stored.grid;
   const double mu = 0.3, shift = fastnorm::detail::spin_shift(grid, fastnorm::RollingDirection::positive_x);
-  auto coefficients = [&](Eigen::Index di, Eigen::Index dj) {
-    if (std::abs(di) < grid.mx()) return rolling.influence().at_offset(di, dj);
-    return fastnorm::cerruti_coefficients<double>(static_cast<double>(di) * grid.dx(), static_cast<double>(dj) * grid.dy(),
-                                                  grid.dx() / 2, grid.dy() / 2, rolling.influence().shear_modulus(),
-                                                  rolling.influence().poisson_ratio());
-  };
   for (const double scale : {0.2, 0.5}) {
     const auto answer = rolling.solve(normal, mu, creepage(1e-3 * scale, 5e-4 * scale, 0.5 * scale));
     INFO("s = " << scale << ": " << answer.message << ", " << answer.sweeps << " sweeps, adhesion "
@@ -164,7 +158,7 @@ TEST_CASE("Steady rolling solves the discrete problem on a wheel-rail patch acro
       for (Eigen::Index source = 0; source < grid.size(); ++source) {
         if (answer.state(source) == fastnorm::TractionState::exterior) continue;
         const Eigen::Index di = i - grid.i_of(source), dj = j - grid.j_of(source);
-        const auto here = coefficients(di, dj), upstream = coefficients(di + 1, dj);
+        const auto here = rolling.influence().coefficients(di, dj), upstream = rolling.influence().coefficients(di + 1, dj);
         const double px = answer.traction_x(source), py = answer.traction_y(source);
         sx += ((here.xx - upstream.xx) * px + (here.xy - upstream.xy) * py) / grid.dx();
         sy += ((here.xy - upstream.xy) * px + (here.yy - upstream.yy) * py) / grid.dx();

@@ -8,6 +8,7 @@
 
 #include <Eigen/Core>
 #include <Eigen/QR>
+#include <algorithm>
 
 namespace fastnorm::detail {
 
@@ -26,31 +27,30 @@ class AndersonMixing {
         last_residual_(residual_size) {}
 
   /// Forgets the history: the next call of mix only records its pair.
-  void reset() { stored_ = 0, have_last_ = false; }
+  void reset() { recorded_ = 0, have_last_ = false; }
 
   /// Records the iteration's output and residual and replaces `output` by the mixed next
   /// iterate (left unchanged on the first call after a reset). The columns of the history are
   /// kept in a ring: the least-squares solution does not depend on their order.
   void mix(Eigen::Ref<Vector> output, const Vector& residual) {
     if (have_last_) {
-      const Index column = next_ % output_changes_.cols();
+      const Index column = recorded_++ % output_changes_.cols();
       output_changes_.col(column) = output - last_output_;
       residual_changes_.col(column) = residual - last_residual_;
-      ++next_;
-      stored_ = std::min<Index>(stored_ + 1, output_changes_.cols());
     }
     last_output_ = output;
     last_residual_ = residual;
     have_last_ = true;
-    if (stored_ == 0) return;
-    const Vector weights = residual_changes_.leftCols(stored_).colPivHouseholderQr().solve(residual);
-    output -= output_changes_.leftCols(stored_) * weights;
+    const Index stored = std::min(recorded_, output_changes_.cols());
+    if (stored == 0) return;
+    const Vector weights = residual_changes_.leftCols(stored).colPivHouseholderQr().solve(residual);
+    output -= output_changes_.leftCols(stored) * weights;
   }
 
  private:
   Matrix output_changes_, residual_changes_;  // one column per remembered step
   Vector last_output_, last_residual_;
-  Index stored_ = 0, next_ = 0;
+  Index recorded_ = 0;  // changes recorded since the reset; the ring keeps the last m
   bool have_last_ = false;
 };
 
