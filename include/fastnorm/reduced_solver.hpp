@@ -99,6 +99,7 @@ class ReducedSolver : public detail::SolverBase<ReducedSolver<Basis, Scalar>, Re
     workspace.start_.check(grid().size());
     if (workspace.owner_ != id_) {  // blocks and assemblies of another basis or grid
       workspace.memory_ = detail::GalerkinMemory<Scalar>();
+      workspace.loop_.forget_bounds();
       workspace.owner_ = id_;
     }
     workspace.memory_.next_problem();

@@ -27,7 +27,7 @@ namespace detail {
 template <typename Scalar>
 struct ActiveSetWorkspace {
   using Index = Eigen::Index;
-  std::vector<Index> active, kept, candidates, joining, admissible_set;
+  std::vector<Index> active, kept, candidates, bridged, joining, admissible_set;
   std::vector<Index> visited_elements;   // every set of this solve, one after the other
   std::vector<std::size_t> visited_ends;  // where each ends in visited_elements
   ScratchMatrix<Scalar> columns;          // right-hand sides in, pressures out (n × 1 or n × 2)
@@ -36,13 +36,18 @@ struct ActiveSetWorkspace {
   std::vector<Scalar> sorted_distance;    // of the force-control starting guess
   std::vector<char> is_active;            // per element of the grid
   Solution<Scalar> spare_solution;        // storage for the next answer (workspace.recycle)
-  // The join check's memory within one solve (ActiveSetLoop::find_joining): per grid element
-  // a lower bound of its displacement u and the check that last bounded it, the pressures
-  // of the last check (on `checked_set`), per strip their decrease since and its bound.
+  // The join check's memory (ActiveSetLoop::find_joining): per grid element a lower bound
+  // of its displacement u and the check that last bounded it, the pressures of the last
+  // check (on `checked_set`), per strip their decrease since and its bound. Within a solve,
+  // and from one warm solve to the next on the same solver.
   std::vector<Scalar> displacement_floor, checked_pressure, strip_decrease, strip_drop;
   std::vector<int> bounded_at;
   std::vector<Index> checked_set;
-  int checks = 0;  // of this solve
+  int checks = 0;  // since the floors were last started afresh; 0: none to carry
+
+  /// The floors belong to another influence table (a workspace moved to another solver):
+  /// the next solve starts them afresh.
+  void forget_bounds() { checks = 0; }
 
   /// True if `set` came up before in this solve; records it otherwise.
   bool seen_before(const std::vector<Index>& set) {
@@ -92,11 +97,19 @@ class ActiveSetLoop {
     work_.visited_ends.clear();
     work_.admissible_set.clear();  // last set with all pressures positive
     work_.is_active.assign(static_cast<std::size_t>(n_all), 0);
-    if (options_.bound_join_check) {
-      work_.bounded_at.assign(static_cast<std::size_t>(n_all), 0);
-      work_.displacement_floor.resize(static_cast<std::size_t>(n_all));
+    // A warm solve keeps the floors of the previous solve's checks: the bound holds for any
+    // two pressure fields on the same influence table (docs/method.md §3). A cold one, whose
+    // first set is far from the last, starts them afresh (cheaper than a bound that fails).
+    const bool carry = options_.bound_join_check && !start_set.empty() && work_.checks > 0 &&
+                       work_.checks < std::numeric_limits<int>::max() / 2 &&
+                       work_.bounded_at.size() == static_cast<std::size_t>(n_all);
+    if (!carry) {
+      work_.checks = 0;
+      if (options_.bound_join_check) {
+        work_.bounded_at.assign(static_cast<std::size_t>(n_all), 0);
+        work_.displacement_floor.resize(static_cast<std::size_t>(n_all));
+      }
     }
-    work_.checks = 0;
     while (solution_.iterations < options_.max_iterations) {
       if (work_.seen_before(work_.active)) {
         if (work_.admissible_set.empty()) {  // no set ever had positive pressures: round-off rules
@@ -210,18 +223,34 @@ class ActiveSetLoop {
     const Scalar margin = 1000 * std::numeric_limits<Scalar>::epsilon() * max_abs_h_;
     for (Index k : work_.active) work_.is_active[static_cast<std::size_t>(k)] = 1;
     work_.candidates.clear();
-    for (Index k = 0; k < h_.size(); ++k) {
-      const auto e = static_cast<std::size_t>(k);
-      if (work_.is_active[e] || !(h_(k) - approach_ < join_below_)) continue;
-      if (bounded && work_.bounded_at[e] == work_.checks - 1) {
-        auto& floor = work_.displacement_floor[e];
-        floor -= work_.strip_drop[static_cast<std::size_t>(grid.j_of(k))];
-        if (h_(k) - approach_ + floor >= margin) {
-          work_.bounded_at[e] = work_.checks;  // still a bound; not evaluated
+    // The displacements cost per run of candidates along a strip and per source segment,
+    // an element of a run far less: a bounded candidate between two evaluated ones of the
+    // same run is evaluated too (`bridged` holds those since the last evaluated one), so
+    // that pruning never splits a run.
+    for (Index j = 0; j < grid.my(); ++j) {
+      bool in_run = false;  // an evaluated candidate precedes k in its run
+      work_.bridged.clear();
+      for (Index k = j * grid.mx(); k < (j + 1) * grid.mx(); ++k) {
+        const auto e = static_cast<std::size_t>(k);
+        if (work_.is_active[e] || !(h_(k) - approach_ < join_below_)) {
+          in_run = false;
+          work_.bridged.clear();
           continue;
         }
+        if (bounded && work_.bounded_at[e] == work_.checks - 1) {
+          auto& floor = work_.displacement_floor[e];
+          floor -= work_.strip_drop[static_cast<std::size_t>(j)];
+          if (h_(k) - approach_ + floor >= margin) {
+            work_.bounded_at[e] = work_.checks;  // still a bound; evaluated only if bridged
+            if (in_run) work_.bridged.push_back(k);
+            continue;
+          }
+        }
+        work_.candidates.insert(work_.candidates.end(), work_.bridged.begin(), work_.bridged.end());
+        work_.bridged.clear();
+        work_.candidates.push_back(k);
+        in_run = true;
       }
-      work_.candidates.push_back(k);
     }
     for (Index k : work_.active) work_.is_active[static_cast<std::size_t>(k)] = 0;
     auto displacement = work_.displacement.resize(static_cast<Index>(work_.candidates.size()), 1).col(0);
