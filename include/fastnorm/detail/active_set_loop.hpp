@@ -27,7 +27,7 @@ namespace detail {
 template <typename Scalar>
 struct ActiveSetWorkspace {
   using Index = Eigen::Index;
-  std::vector<Index> active, kept, candidates, bridged, joining, admissible_set;
+  std::vector<Index> active, kept, candidates, joining, admissible_set;
   std::vector<Index> visited_elements;   // every set of this solve, one after the other
   std::vector<std::size_t> visited_ends;  // where each ends in visited_elements
   ScratchMatrix<Scalar> columns;          // right-hand sides in, pressures out (n × 1 or n × 2)
@@ -100,9 +100,9 @@ class ActiveSetLoop {
     // A warm solve keeps the floors of the previous solve's checks: the bound holds for any
     // two pressure fields on the same influence table (docs/method.md §3). A cold one, whose
     // first set is far from the last, starts them afresh (cheaper than a bound that fails).
+    // (The check counter restarts long before it could overflow.)
     const bool carry = options_.bound_join_check && !start_set.empty() && work_.checks > 0 &&
-                       work_.checks < std::numeric_limits<int>::max() / 2 &&
-                       work_.bounded_at.size() == static_cast<std::size_t>(n_all);
+                       work_.checks < std::numeric_limits<int>::max() / 2;
     if (!carry) {
       work_.checks = 0;
       if (options_.bound_join_check) {
@@ -225,16 +225,13 @@ class ActiveSetLoop {
     work_.candidates.clear();
     // The displacements cost per run of candidates along a strip and per source segment,
     // an element of a run far less: a bounded candidate between two evaluated ones of the
-    // same run is evaluated too (`bridged` holds those since the last evaluated one), so
-    // that pruning never splits a run.
+    // same run is evaluated too, so that pruning never splits a run.
     for (Index j = 0; j < grid.my(); ++j) {
-      bool in_run = false;  // an evaluated candidate precedes k in its run
-      work_.bridged.clear();
+      Index last_evaluated = -1;  // in the current run of candidates; −1: none yet
       for (Index k = j * grid.mx(); k < (j + 1) * grid.mx(); ++k) {
         const auto e = static_cast<std::size_t>(k);
         if (work_.is_active[e] || !(h_(k) - approach_ < join_below_)) {
-          in_run = false;
-          work_.bridged.clear();
+          last_evaluated = -1;  // the run ends
           continue;
         }
         if (bounded && work_.bounded_at[e] == work_.checks - 1) {
@@ -242,14 +239,15 @@ class ActiveSetLoop {
           floor -= work_.strip_drop[static_cast<std::size_t>(j)];
           if (h_(k) - approach_ + floor >= margin) {
             work_.bounded_at[e] = work_.checks;  // still a bound; evaluated only if bridged
-            if (in_run) work_.bridged.push_back(k);
             continue;
           }
         }
-        work_.candidates.insert(work_.candidates.end(), work_.bridged.begin(), work_.bridged.end());
-        work_.bridged.clear();
+        // The bounded candidates since the last evaluated one of this run, then k.
+        if (last_evaluated >= 0) {
+          for (Index bridged = last_evaluated + 1; bridged < k; ++bridged) work_.candidates.push_back(bridged);
+        }
         work_.candidates.push_back(k);
-        in_run = true;
+        last_evaluated = k;
       }
     }
     for (Index k : work_.active) work_.is_active[static_cast<std::size_t>(k)] = 0;
