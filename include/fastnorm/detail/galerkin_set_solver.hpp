@@ -32,7 +32,7 @@ struct GalerkinMemory {
     std::vector<Segment> segments;   // sorted by strip, then first element
     std::vector<Index> order;        // segment indices in the order of their unknowns
     std::vector<Index> offsets;      // first unknown of each segment
-    ScratchMatrix<Scalar> matrix;    // Aᵀ C_II A, both triangles
+    ScratchMatrix<Scalar> matrix;    // Aᵀ C_II A, its lower triangle (store_block)
     InPlaceCholesky<Scalar> cholesky;
     Index unknowns() const { return matrix.rows(); }
   };
@@ -161,23 +161,20 @@ class GalerkinSetSolver {
     const Assembly& assembly = memory_.path.back();
     FASTNORM_ASSERT(assembly.segments.empty() ||
                     pressure.size() == assembly.segments.back().set_position + assembly.segments.back().count);
-    const Index mx = influence_.grid().mx(), my = influence_.grid().my();
+    const Index mx = influence_.grid().mx();
     segment_strips(influence_.grid(), targets, memory_.target_runs);
     result.setZero();
     auto block_of_count = [this](Index count) { return block_of(count); };
     for (const Segment& source : assembly.segments) {
       const auto source_pressure = pressure.segment(source.set_position, source.count);
-      const Matrix* table =
-          is_identity(source.count) ? nullptr : tables_.displacement(source.count, block_of_count, influence_);
-      if (table != nullptr) {
+      const auto table = is_identity(source.count) ? DisplacementTable<Scalar>()
+                                                   : tables_.displacement(source.count, block_of_count, influence_);
+      if (table) {
         auto alpha = memory_.coefficients.resize(basis_.unknowns(), 1);  // q ≤ n_s here
         alpha.noalias() = projection_of(source.count) * source_pressure;
         for (const Segment& run : memory_.target_runs) {
           const Index row = run.first - source.first + mx - source.count, dj = std::abs(run.strip - source.strip);
-          auto displacement = result.segment(run.set_position, run.count);
-          for (Index b = 0; b < alpha.rows(); ++b) {
-            displacement += alpha(b) * table->col(b * my + dj).segment(row, run.count);
-          }
+          table.add_to(alpha, row, dj, result.segment(run.set_position, run.count));
         }
       } else {
         for (const Segment& run : memory_.target_runs) {
@@ -273,27 +270,59 @@ class GalerkinSetSolver {
   /// The Cholesky factor of `next`: the leading `kept` × `kept` block of `previous`'s
   /// factor (the same leading unknowns and matrix entries), the rest computed from it.
   void factorise(Assembly& next, const Assembly* previous, Index kept) {
-    const Index n = next.unknowns();
+    const Index n = next.unknowns(), rest = n - kept;
     next.cholesky.resize(n);
     auto factor = next.cholesky.matrix();
+    const auto matrix = next.matrix.view();
     if (kept > 0) {
       factor.topLeftCorner(kept, kept).template triangularView<Eigen::Lower>() =
           previous->cholesky.factor().topLeftCorner(kept, kept);
     }
-    factor.bottomRows(n - kept) = next.matrix.view().bottomRows(n - kept);
+    factor.bottomLeftCorner(rest, kept) = matrix.bottomLeftCorner(rest, kept);
+    factor.bottomRightCorner(rest, rest).template triangularView<Eigen::Lower>() = matrix.bottomRightCorner(rest, rest);
     next.cholesky.factorise_from(kept);
   }
 
-  /// Aᵀ C_II A: block (t, s) for t ≥ s = A_tᵀ C_ts A_s, and its transpose. The leading
-  /// `kept` × `kept` block, between the segments kept in `previous`'s place, is copied from
-  /// it at once, as are the other blocks between two segments both in `previous`; the
-  /// others are one product of a run of the table with the correlation table of the two
-  /// segment lengths (Eq. (M2)). Pairs without a table (past the memory budget) take the
-  /// direct product: per source segment s, the Toeplitz blocks C_ts of those targets
-  /// stacked into one tall matrix times A_s. `order_unknowns` has filled `old_index`.
+  /// Block (t, s) of an assembly, A_tᵀ C_ts A_s (t's unknowns down, s's across), as the
+  /// assembly stores it: only the lower triangle is kept (all the factorisation reads), so
+  /// the block lies at (t, s) when t's unknowns come after s's and as its transpose at
+  /// (s, t) otherwise.
+  template <typename Value>
+  static void store_block(const Assembly& assembly, Eigen::Map<Matrix>& matrix, std::size_t t, std::size_t s,
+                          const Value& value) {
+    const Index row = assembly.offsets[t], column = assembly.offsets[s];
+    if (row >= column) {
+      matrix.block(row, column, value.rows(), value.cols()) = value;
+    } else {
+      matrix.block(column, row, value.cols(), value.rows()) = value.transpose();
+    }
+  }
+  /// Copies block (t, s) of `next` from block (t_old, s_old) of `previous`, both as stored.
+  static void copy_block(const Assembly& next, Eigen::Map<Matrix>& matrix, std::size_t t, std::size_t s,
+                         const Assembly& previous, std::size_t t_old, std::size_t s_old, Index q_t, Index q_s) {
+    const auto old = previous.matrix.view();
+    const Index row = previous.offsets[t_old], column = previous.offsets[s_old];
+    if (row >= column) {
+      store_block(next, matrix, t, s, old.block(row, column, q_t, q_s));
+    } else {
+      store_block(next, matrix, t, s, old.block(column, row, q_s, q_t).transpose());
+    }
+  }
+
+  /// Aᵀ C_II A, its lower triangle (store_block): block (t, s) for t ≥ s = A_tᵀ C_ts A_s.
+  /// The leading `kept` × `kept` block, between the segments kept in `previous`'s place,
+  /// is copied from it at once, as are the other blocks between two segments both in
+  /// `previous`; the others are one product of a run of the table with the correlation
+  /// table of the two segment lengths (Eq. (M2)). Pairs without a table (past the memory
+  /// budget) take the direct product: per source segment s, the Toeplitz blocks C_ts of
+  /// those targets stacked into one tall matrix times A_s. `order_unknowns` has filled
+  /// `old_index`.
   void assemble(Assembly& next, const Assembly* previous, Index kept) {
     auto matrix = next.matrix.view();
-    if (kept > 0) matrix.topLeftCorner(kept, kept) = previous->matrix.view().topLeftCorner(kept, kept);
+    if (kept > 0) {
+      matrix.topLeftCorner(kept, kept).template triangularView<Eigen::Lower>() =
+          previous->matrix.view().topLeftCorner(kept, kept);
+    }
     const auto& old_index = memory_.old_index;
     // The kept segments are exactly those whose unknowns lie in the leading block.
     const auto both_kept = [&](std::size_t s, std::size_t t) { return next.offsets[s] < kept && next.offsets[t] < kept; };
@@ -308,17 +337,16 @@ class GalerkinSetSolver {
         if (both_kept(s, t)) continue;
         const Segment& target = next.segments[t];
         const Index q_t = unknowns_of(target.count);
-        auto block = matrix.block(next.offsets[t], next.offsets[s], q_t, q_s);
         if (old_index[s] >= 0 && old_index[t] >= 0) {  // both unchanged: copy
-          block = previous->matrix.view().block(previous->offsets[static_cast<std::size_t>(old_index[t])],
-                                                previous->offsets[static_cast<std::size_t>(old_index[s])], q_t, q_s);
+          copy_block(next, matrix, t, s, *previous, static_cast<std::size_t>(old_index[t]),
+                     static_cast<std::size_t>(old_index[s]), q_t, q_s);
         } else if (const Matrix* correlation = tables_.correlation(target.count, source.count, block_of_count)) {
           // Σ_d c(Δ + d, dj) K(d), d = −(n_s − 1) … n_t − 1: K's column a + q_t·b is entry (a, b).
           auto entries = memory_.block_entries.resize(q_t * q_s, 1);
           entries.noalias() =
               correlation->transpose() * influence_.run(target.first - source.first - (source.count - 1),
                                                         target.strip - source.strip, target.count + source.count - 1);
-          block = Eigen::Map<const Matrix>(entries.data(), q_t, q_s);
+          store_block(next, matrix, t, s, Eigen::Map<const Matrix>(entries.data(), q_t, q_s));
         } else {
           direct.push_back(t);
           rows += target.count;
@@ -341,23 +369,14 @@ class GalerkinSetSolver {
       row = 0;
       for (std::size_t t : direct) {
         const Segment& target = next.segments[t];
-        auto block = matrix.block(next.offsets[t], next.offsets[s], unknowns_of(target.count), q_s);
         if (is_identity(target.count)) {
-          block = half.middleRows(row, target.count);
+          store_block(next, matrix, t, s, half.middleRows(row, target.count));
         } else {
+          auto block = memory_.block_entries.resize(unknowns_of(target.count), q_s);
           block.noalias() = basis_of(target.count).transpose() * half.middleRows(row, target.count);
+          store_block(next, matrix, t, s, block);
         }
         row += target.count;
-      }
-    }
-    // The blocks (s, t), t > s, from (t, s).
-    for (std::size_t s = 0; s < next.segments.size(); ++s) {
-      const Index q_s = unknowns_of(next.segments[s].count);
-      for (std::size_t t = s + 1; t < next.segments.size(); ++t) {
-        if (both_kept(s, t)) continue;
-        const Index q_t = unknowns_of(next.segments[t].count);
-        matrix.block(next.offsets[s], next.offsets[t], q_s, q_t) =
-            matrix.block(next.offsets[t], next.offsets[s], q_t, q_s).transpose();
       }
     }
   }

@@ -14,7 +14,10 @@
 ///
 ///       u(i_t, j_t) = Σ_b α_b W_b(i_t − i_s, dj),   W_b(d, dj) = Σ_m c(d − m, dj) A_s(m, b);
 ///
-///   W depends on the count, the basis and the influence table.
+///   W depends on the count, the basis and the influence table. The q values W_b of one
+///   (d, dj) are stored side by side, so that the slice a run of candidates reads is one
+///   contiguous stretch of memory (the join check reads these tables scattered, mostly from
+///   outside the cache: one stretch costs fewer misses than q of them).
 ///
 /// Each table is built on first use and kept within one memory budget; past it the solver
 /// falls back to the direct products, which give the same numbers more slowly.
@@ -32,6 +35,41 @@
 
 namespace fastnorm {
 namespace detail {
+
+/// W of Eq. (M3) for one segment length, as SegmentTables::displacement gives it: a view of
+/// the table, or none (past the memory budget).
+template <typename Scalar>
+class DisplacementTable {
+ public:
+  using Index = Eigen::Index;
+  using Matrix = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;
+
+  DisplacementTable() = default;
+  /// `values`: q × (rows·my), column dj·rows + r holding W_0 … W_{q−1} at row r.
+  DisplacementTable(const Matrix* values, Index rows) : values_(values), rows_(rows) {}
+
+  explicit operator bool() const { return values_ != nullptr; }
+
+  /// u(k) += Σ_b α_b W_b(d, dj) at the rows r = d + mx − n = row + k, k < u.size()
+  /// (d = i_t − i_s), b in order (so the sums are those of adding the functions one after
+  /// the other). Written out: the join check's runs are a few elements long, and building
+  /// Eigen's block expressions of a slice of this layout for each run and function cost
+  /// more than the arithmetic (measured: a warm elliptic solve 40 % slower).
+  template <typename Coefficients, typename Displacement>
+  void add_to(const Coefficients& alpha, Index row, Index dj, Displacement&& u) const {
+    const Index q = values_->rows();
+    const Scalar* w = values_->data() + (dj * rows_ + row) * q;
+    for (Index k = 0; k < u.size(); ++k, w += q) {
+      Scalar sum = u(k);
+      for (Index b = 0; b < q; ++b) sum += alpha(b) * w[b];
+      u(k) = sum;
+    }
+  }
+
+ private:
+  const Matrix* values_ = nullptr;
+  Index rows_ = 0;
+};
 
 /// The tables of Eqs. (M2) and (M3) for segments up to `longest` elements. Safe to share
 /// between threads (a solver's const solve may run on several): a table, once published,
@@ -68,18 +106,19 @@ class SegmentTables {
                    [&]() { return correlate(target, source); });
   }
 
-  /// W for a source of `count` elements on `influence`'s grid (mx = longest):
-  /// (2·mx − n) × (q·my), row d + mx − n for d = i_t − i_s = −(mx − n) … mx − 1, column
-  /// b·my + |dj|. nullptr when the budget has no room for it.
+  /// W for a source of `count` elements on `influence`'s grid (mx = longest), at rows
+  /// r = d + mx − n for d = i_t − i_s = −(mx − n) … mx − 1 and |dj| = 0 … my − 1; none when
+  /// the budget has no room for it.
   template <typename BlockOf>
-  const Matrix* displacement(Index count, const BlockOf& block_of, const InfluenceTable<Scalar>& influence) {
+  DisplacementTable<Scalar> displacement(Index count, const BlockOf& block_of, const InfluenceTable<Scalar>& influence) {
     FASTNORM_ASSERT(count >= 1 && count <= longest_ && influence.grid().mx() == longest_);
     const auto slot = static_cast<std::size_t>((longest_ + 1) * (longest_ + 1) + count);
-    if (const Matrix* table = published(slot)) return table;
-    if (refused_[slot].load(std::memory_order_relaxed)) return nullptr;
+    const Index rows = 2 * longest_ - count;
+    if (const Matrix* table = published(slot)) return {table, rows};
+    if (refused_[slot].load(std::memory_order_relaxed)) return {};
     const Matrix block = block_of(count);
-    return publish(slot, (2 * longest_ - count) * block.cols() * influence.grid().my(),
-                   [&]() { return displace(block, influence); });
+    return {publish(slot, rows * block.cols() * influence.grid().my(), [&]() { return displace(block, influence); }),
+            rows};
   }
 
   /// Memory the tables take now (bytes).
@@ -128,16 +167,18 @@ class SegmentTables {
   }
 
   /// W_b(d, dj) = Σ_m c(d − m, dj) A(m, b): with row r = d + mx − n, c(d − m) is entry
-  /// r + n − 1 − m of the table's column, so each column of W is a sum of n shifted runs.
+  /// r + n − 1 − m of the influence table's run, so W_b(·, dj) is a sum of n shifted runs,
+  /// stored as row b of the columns of dj (DisplacementTable).
   static Matrix displace(const Matrix& block, const InfluenceTable<Scalar>& influence) {
     const Index n = block.rows(), mx = influence.grid().mx(), my = influence.grid().my();
     const Index rows = 2 * mx - n;
-    Matrix table = Matrix::Zero(rows, block.cols() * my);
+    Matrix table(block.cols(), rows * my);
+    Eigen::Matrix<Scalar, Eigen::Dynamic, 1> function(rows);
     for (Index b = 0; b < block.cols(); ++b) {
       for (Index dj = 0; dj < my; ++dj) {
-        for (Index m = 0; m < n; ++m) {
-          table.col(b * my + dj) += block(m, b) * influence.run(n - 1 - m - (mx - 1), dj, rows);
-        }
+        function.setZero();
+        for (Index m = 0; m < n; ++m) function += block(m, b) * influence.run(n - 1 - m - (mx - 1), dj, rows);
+        table.row(b).segment(dj * rows, rows) = function.transpose();
       }
     }
     return table;
