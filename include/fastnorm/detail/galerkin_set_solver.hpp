@@ -45,6 +45,10 @@ struct GalerkinMemory {
   std::vector<Segment> segments, target_runs;
   std::vector<Index> old_index, new_index;
   std::vector<std::size_t> direct;
+  struct SurvivorRun {  // unknowns of consecutive surviving segments, contiguous in both sets
+    Index next_offset, previous_offset, size;
+  };
+  std::vector<SurvivorRun> survivor_runs;
   ScratchMatrix<Scalar> coupling, times_basis, block_entries, reduced_rhs, coefficients;
 
   /// An assembly to fill: the spare one with the most storage, so that storage grows only
@@ -110,7 +114,7 @@ class GalerkinSetSolver {
                                  : !last_path.empty()  ? &last_path.back()
                                                        : nullptr;
       const Index kept = order_unknowns(next, previous);
-      assemble(next, previous, kept);
+      assemble(next, previous);
       factorise(next, previous, kept);
     }
     memory_.path.push_back(std::move(next));
@@ -297,35 +301,51 @@ class GalerkinSetSolver {
       matrix.block(column, row, value.cols(), value.rows()) = value.transpose();
     }
   }
-  /// Copies block (t, s) of `next` from block (t_old, s_old) of `previous`, both as stored.
-  static void copy_block(const Assembly& next, Eigen::Map<Matrix>& matrix, std::size_t t, std::size_t s,
-                         const Assembly& previous, std::size_t t_old, std::size_t s_old, Index q_t, Index q_s) {
+  /// The blocks between two segments that `previous` holds too, copied from it. Such
+  /// segments keep their relative order (order_unknowns), so they form runs whose unknowns
+  /// are contiguous in both systems, and the lower triangle between two runs is one
+  /// submatrix of both: a few copies instead of one per pair of segments.
+  void copy_survivors(Assembly& next, const Assembly& previous) {
+    auto& runs = memory_.survivor_runs;
+    runs.clear();
+    for (const Index s : next.order) {
+      const Index old = memory_.old_index[static_cast<std::size_t>(s)];
+      if (old < 0) continue;
+      const Index at = next.offsets[static_cast<std::size_t>(s)], was = previous.offsets[static_cast<std::size_t>(old)];
+      const Index size = unknowns_of(next.segments[static_cast<std::size_t>(s)].count);
+      if (!runs.empty() && at == runs.back().next_offset + runs.back().size &&
+          was == runs.back().previous_offset + runs.back().size) {
+        runs.back().size += size;
+      } else {
+        runs.push_back({at, was, size});
+      }
+    }
+    auto matrix = next.matrix.view();
     const auto old = previous.matrix.view();
-    const Index row = previous.offsets[t_old], column = previous.offsets[s_old];
-    if (row >= column) {
-      store_block(next, matrix, t, s, old.block(row, column, q_t, q_s));
-    } else {
-      store_block(next, matrix, t, s, old.block(column, row, q_s, q_t).transpose());
+    for (std::size_t a = 0; a < runs.size(); ++a) {
+      const auto& row = runs[a];
+      matrix.block(row.next_offset, row.next_offset, row.size, row.size).template triangularView<Eigen::Lower>() =
+          old.block(row.previous_offset, row.previous_offset, row.size, row.size);
+      for (std::size_t b = 0; b < a; ++b) {
+        const auto& column = runs[b];
+        FASTNORM_ASSERT(row.previous_offset > column.previous_offset);  // the same order in both
+        matrix.block(row.next_offset, column.next_offset, row.size, column.size) =
+            old.block(row.previous_offset, column.previous_offset, row.size, column.size);
+      }
     }
   }
 
   /// Aᵀ C_II A, its lower triangle (store_block): block (t, s) for t ≥ s = A_tᵀ C_ts A_s.
-  /// The leading `kept` × `kept` block, between the segments kept in `previous`'s place,
-  /// is copied from it at once, as are the other blocks between two segments both in
-  /// `previous`; the others are one product of a run of the table with the correlation
-  /// table of the two segment lengths (Eq. (M2)). Pairs without a table (past the memory
-  /// budget) take the direct product: per source segment s, the Toeplitz blocks C_ts of
-  /// those targets stacked into one tall matrix times A_s. `order_unknowns` has filled
-  /// `old_index`.
-  void assemble(Assembly& next, const Assembly* previous, Index kept) {
+  /// The blocks between two segments both in `previous` are copied from it
+  /// (copy_survivors); the others are one product of a run of the table with the
+  /// correlation table of the two segment lengths (Eq. (M2)). Pairs without a table (past
+  /// the memory budget) take the direct product: per source segment s, the Toeplitz blocks
+  /// C_ts of those targets stacked into one tall matrix times A_s. `order_unknowns` has
+  /// filled `old_index`.
+  void assemble(Assembly& next, const Assembly* previous) {
     auto matrix = next.matrix.view();
-    if (kept > 0) {
-      matrix.topLeftCorner(kept, kept).template triangularView<Eigen::Lower>() =
-          previous->matrix.view().topLeftCorner(kept, kept);
-    }
+    if (previous != nullptr) copy_survivors(next, *previous);
     const auto& old_index = memory_.old_index;
-    // The kept segments are exactly those whose unknowns lie in the leading block.
-    const auto both_kept = [&](std::size_t s, std::size_t t) { return next.offsets[s] < kept && next.offsets[t] < kept; };
     auto block_of_count = [this](Index count) { return block_of(count); };
     auto& direct = memory_.direct;
     for (std::size_t s = 0; s < next.segments.size(); ++s) {
@@ -334,13 +354,10 @@ class GalerkinSetSolver {
       direct.clear();
       Index rows = 0;
       for (std::size_t t = s; t < next.segments.size(); ++t) {
-        if (both_kept(s, t)) continue;
+        if (old_index[s] >= 0 && old_index[t] >= 0) continue;  // both unchanged: copied
         const Segment& target = next.segments[t];
         const Index q_t = unknowns_of(target.count);
-        if (old_index[s] >= 0 && old_index[t] >= 0) {  // both unchanged: copy
-          copy_block(next, matrix, t, s, *previous, static_cast<std::size_t>(old_index[t]),
-                     static_cast<std::size_t>(old_index[s]), q_t, q_s);
-        } else if (const Matrix* correlation = tables_.correlation(target.count, source.count, block_of_count)) {
+        if (const Matrix* correlation = tables_.correlation(target.count, source.count, block_of_count)) {
           // Σ_d c(Δ + d, dj) K(d), d = −(n_s − 1) … n_t − 1: K's column a + q_t·b is entry (a, b).
           auto entries = memory_.block_entries.resize(q_t * q_s, 1);
           entries.noalias() =
