@@ -292,8 +292,8 @@ class GalerkinSetSolver {
   /// the block lies at (t, s) when t's unknowns come after s's and as its transpose at
   /// (s, t) otherwise.
   template <typename Value>
-  static void store_block(const Assembly& assembly, Eigen::Map<Matrix>& matrix, std::size_t t, std::size_t s,
-                          const Value& value) {
+  static void store_block(Assembly& assembly, std::size_t t, std::size_t s, const Value& value) {
+    auto matrix = assembly.matrix.view();
     const Index row = assembly.offsets[t], column = assembly.offsets[s];
     if (row >= column) {
       matrix.block(row, column, value.rows(), value.cols()) = value;
@@ -343,7 +343,6 @@ class GalerkinSetSolver {
   /// C_ts of those targets stacked into one tall matrix times A_s. `order_unknowns` has
   /// filled `old_index`.
   void assemble(Assembly& next, const Assembly* previous) {
-    auto matrix = next.matrix.view();
     if (previous != nullptr) copy_survivors(next, *previous);
     const auto& old_index = memory_.old_index;
     auto block_of_count = [this](Index count) { return block_of(count); };
@@ -363,7 +362,7 @@ class GalerkinSetSolver {
           entries.noalias() =
               correlation->transpose() * influence_.run(target.first - source.first - (source.count - 1),
                                                         target.strip - source.strip, target.count + source.count - 1);
-          store_block(next, matrix, t, s, Eigen::Map<const Matrix>(entries.data(), q_t, q_s));
+          store_block(next, t, s, Eigen::Map<const Matrix>(entries.data(), q_t, q_s));
         } else {
           direct.push_back(t);
           rows += target.count;
@@ -387,11 +386,11 @@ class GalerkinSetSolver {
       for (std::size_t t : direct) {
         const Segment& target = next.segments[t];
         if (is_identity(target.count)) {
-          store_block(next, matrix, t, s, half.middleRows(row, target.count));
+          store_block(next, t, s, half.middleRows(row, target.count));
         } else {
           auto block = memory_.block_entries.resize(unknowns_of(target.count), q_s);
           block.noalias() = basis_of(target.count).transpose() * half.middleRows(row, target.count);
-          store_block(next, matrix, t, s, block);
+          store_block(next, t, s, block);
         }
         row += target.count;
       }
