@@ -1,12 +1,14 @@
 // The analytic S1002 and UIC60 profiles against the verification points of
 // ../shared/docs/profiles.md (values published to 1e-7 and 1e-6 mm).
 #include <catch2/catch.hpp>
+#include <fastnorm/wheelrail/profile_curve.hpp>
 #include <fastnorm/wheelrail/s1002.hpp>
 #include <fastnorm/wheelrail/profile_file.hpp>
 #include <fastnorm/wheelrail/uic60.hpp>
 
 #include <unistd.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -195,4 +197,39 @@ TEST_CASE("Profile files: plain text, SIMPACK flags and errors", "[wheelrail][pr
   fastnorm::wheelrail::ProfilePoints crowded{{-3e-5, -5e-77, 0}, {-0.04, 0, 0}};
   CHECK_THROWS_WITH(fastnorm::wheelrail::SplineProfile(crowded), Contains("closer than 1 nm, at point") && Contains("got 2"));
   fs::remove_all(dir);
+}
+
+TEST_CASE("ProfileCurve: built-in kinds, a spline and a function of one's own; bad curves refused",
+          "[wheelrail][profiles]") {
+  namespace wr = fastnorm::wheelrail;
+  const wr::S1002<double> s1002;
+  const auto rail = wr::Uic60<double>::mbench();
+  const wr::ProfileCurve wheel = wr::s1002_wheel(), head = wr::uic60_rail(rail);
+  const wr::ProfileCurve own([&](double y) { return s1002.evaluate(y); }, wr::S1002<double>::y_min, wr::S1002<double>::y_max);
+  CHECK(wheel.y_min() == wr::S1002<double>::y_min);
+  CHECK(wheel.y_max() == wr::S1002<double>::y_max);
+  CHECK(head.y_max() == rail.flank_start());
+  CHECK(head.y_min() == -rail.flank_start());
+  // Held as itself or behind std::function: the same numbers, bit for bit.
+  for (double y = -0.0699; y <= 0.06; y += 1.3e-4) {
+    CHECK(wheel.evaluate(y).value == own.evaluate(y).value);
+    CHECK(wheel.evaluate(y).slope == own.evaluate(y).slope);
+    CHECK(wheel.evaluate(y).value == s1002.evaluate(y).value);
+  }
+  CHECK(head.evaluate(0.02).value == rail.evaluate(0.02).value);
+  CHECK_FALSE(head.contains(0.04));
+
+  // A spline keeps its points' interval and its errors.
+  const wr::ProfileCurve spline =
+      wr::spline_curve(wr::SplineProfile(wr::ProfilePoints{{-3e-3, -1e-3, 0, 1e-3, 3e-3}, {2.254e-4, 2.5e-5, 0, 2.5e-5, 2.254e-4}}));
+  CHECK(spline.y_min() == -3e-3);
+  CHECK(spline.y_max() == 3e-3);
+  CHECK(spline.evaluate(1e-3).value == Approx(2.5e-5));
+  CHECK_THROWS_WITH(spline.evaluate(4e-3), Contains("outside"));
+
+  CHECK_THROWS_WITH(wr::ProfileCurve(wr::ProfileCurve::Function(), -1e-3, 1e-3), Contains("function is empty"));
+  CHECK_THROWS_WITH(wr::ProfileCurve([](double) { return wr::ProfileValue<double>{}; }, 1e-3, -1e-3),
+                    Contains("y_min < y_max"));
+  CHECK_THROWS_WITH(wr::ProfileCurve([](double) { return wr::ProfileValue<double>{}; }, 0, std::nan("")),
+                    Contains("y_min < y_max"));
 }

@@ -90,10 +90,10 @@ namespace detail {
 /// The locus samples over a profile: y_w = y_min + k·step for k = 0 … last_sample (the last
 /// clipped to y_max).
 inline std::size_t last_sample(const ProfileCurve& profile, double step) {
-  return static_cast<std::size_t>(std::ceil((profile.y_max - profile.y_min) / step));
+  return static_cast<std::size_t>(std::ceil((profile.y_max() - profile.y_min()) / step));
 }
 inline double sample_y(const ProfileCurve& profile, double step, std::size_t k) {
-  return std::min(profile.y_max, profile.y_min + static_cast<double>(k) * step);
+  return std::min(profile.y_max(), profile.y_min() + static_cast<double>(k) * step);
 }
 
 }  // namespace detail

@@ -8,6 +8,7 @@
 #include <functional>
 #include <optional>
 #include <utility>
+#include <variant>
 
 #include "fastnorm/error.hpp"
 #include "fastnorm/wheelrail/profile_file.hpp"
@@ -17,34 +18,64 @@
 
 namespace fastnorm::wheelrail {
 
-/// A profile function y ↦ {value, slope} (m) valid on [y_min, y_max] (m).
+/// A profile function y ↦ {value, slope} (m) valid on [y_min(), y_max()] (m).
 /// Wheels: value = radius increase F above the nominal radius, y = profile coordinate from
 /// the taping line, positive to the field side (as S1002). Rails: value = depth z_r below
 /// the top (positive down), y = y_r from the rail's axis, positive to the field side of the
 /// right rail, uncanted unless the track is given a cant of zero.
-struct ProfileCurve {
-  std::function<ProfileValue<double>(double)> evaluate;
-  double y_min = 0;
-  double y_max = 0;
+///
+/// The built-in profiles and splines are held as themselves, so that `evaluate` is a direct
+/// call the compiler can inline into the geometry's loops (h along a row evaluates the wheel
+/// at every node, docs/wheel-rail.md §4); any other function of y is held as a
+/// `std::function` and costs an indirect call per point.
+class ProfileCurve {
+ public:
+  /// Any function of y, e.g. a closed form of one's own.
+  using Function = std::function<ProfileValue<double>(double)>;
 
-  bool contains(double y) const { return y >= y_min && y <= y_max; }
+  /// @throws fastnorm::invalid_argument for an empty function or an interval that is not
+  ///         y_min < y_max (both finite)
+  ProfileCurve(Function function, double y_min, double y_max) : source_(std::move(function)), y_min_(y_min), y_max_(y_max) {
+    FASTNORM_CHECK(static_cast<bool>(std::get<Function>(source_)), "ProfileCurve: function is empty");
+    FASTNORM_CHECK(std::isfinite(y_min) && std::isfinite(y_max) && y_min < y_max,
+                   "ProfileCurve: y_min < y_max must hold (m), both finite");
+  }
+  /// The closed-form S1002 wheel on its whole valid interval.
+  explicit ProfileCurve(S1002<double> wheel) : source_(wheel), y_min_(S1002<double>::y_min), y_max_(S1002<double>::y_max) {}
+  /// The closed-form UIC60 head up to the end of its R13 arcs.
+  explicit ProfileCurve(const Uic60<double>& rail) : source_(rail), y_min_(-rail.flank_start()), y_max_(rail.flank_start()) {}
+  /// A spline through measured points, on the interval its points span.
+  explicit ProfileCurve(SplineProfile spline)
+      : source_(std::move(spline)), y_min_(std::get<SplineProfile>(source_).y_min()),
+        y_max_(std::get<SplineProfile>(source_).y_max()) {}
+
+  ProfileValue<double> evaluate(double y) const {
+    // A chain of direct calls rather than std::visit: each branch can be inlined, and the
+    // branch taken is the same at every call of a model.
+    if (const auto* wheel = std::get_if<S1002<double>>(&source_)) return wheel->evaluate(y);
+    if (const auto* rail = std::get_if<Uic60<double>>(&source_)) return rail->evaluate(y);
+    if (const auto* spline = std::get_if<SplineProfile>(&source_)) return spline->evaluate(y);
+    return std::get<Function>(source_)(y);
+  }
+
+  double y_min() const { return y_min_; }
+  double y_max() const { return y_max_; }
+  bool contains(double y) const { return y >= y_min_ && y <= y_max_; }
+
+ private:
+  std::variant<S1002<double>, Uic60<double>, SplineProfile, Function> source_;
+  double y_min_;
+  double y_max_;
 };
 
 /// The closed-form S1002 wheel.
-inline ProfileCurve s1002_wheel() {
-  return {[](double y) { return S1002<double>().evaluate(y); }, S1002<double>::y_min, S1002<double>::y_max};
-}
+inline ProfileCurve s1002_wheel() { return ProfileCurve(S1002<double>()); }
 
 /// The closed-form UIC60 head up to the end of its R13 arcs (MBench variant by default).
-inline ProfileCurve uic60_rail(const Uic60<double>& rail = Uic60<double>::mbench()) {
-  return {[rail](double y) { return rail.evaluate(y); }, -rail.flank_start(), rail.flank_start()};
-}
+inline ProfileCurve uic60_rail(const Uic60<double>& rail = Uic60<double>::mbench()) { return ProfileCurve(rail); }
 
 /// A measured or worn profile: the spline through its points.
-inline ProfileCurve spline_curve(SplineProfile spline) {
-  const double low = spline.y_min(), high = spline.y_max();
-  return {[spline = std::move(spline)](double y) { return spline.evaluate(y); }, low, high};
-}
+inline ProfileCurve spline_curve(SplineProfile spline) { return ProfileCurve(std::move(spline)); }
 
 namespace detail {
 

@@ -46,23 +46,21 @@ class Track {
                    fastnorm::detail::describe("Track: gauge_depth must be positive (m)", layout.gauge_depth));
     FASTNORM_CHECK(std::isfinite(layout.cant) && std::abs(layout.cant) < 0.2,
                    fastnorm::detail::describe("Track: cant must lie in (-0.2, 0.2) rad", layout.cant));
-    FASTNORM_CHECK(static_cast<bool>(rail_.evaluate) && rail_.y_min < rail_.y_max,
-                   "Track: the rail profile needs a function and y_min < y_max");
     cos_ = std::cos(layout.cant);
     sin_ = std::sin(layout.cant);
     // Top of the canted head: the lowest z' (dense scan, then golden section).
     const int samples = 2000;
-    double best = rail_.y_min, best_z = canted_z(best);
+    double best = rail_.y_min(), best_z = canted_z(best);
     for (int k = 1; k <= samples; ++k) {
-      const double y_r = rail_.y_min + (rail_.y_max - rail_.y_min) * k / samples;
+      const double y_r = rail_.y_min() + (rail_.y_max() - rail_.y_min()) * k / samples;
       if (canted_z(y_r) < best_z) best = y_r, best_z = canted_z(y_r);
     }
-    const double step = (rail_.y_max - rail_.y_min) / samples;
+    const double step = (rail_.y_max() - rail_.y_min()) / samples;
     const auto top = detail::golden_minimum([&](double y_r) { return canted_z(y_r); },
-                                            std::max(rail_.y_min, best - step), std::min(rail_.y_max, best + step), 1e-12);
+                                            std::max(rail_.y_min(), best - step), std::min(rail_.y_max(), best + step), 1e-12);
     shift_z_ = -top.second;
     // Gauge point: the innermost point within gauge_depth of the top.
-    double inside = top.first, outside = rail_.y_min;
+    double inside = top.first, outside = rail_.y_min();
     FASTNORM_CHECK(canted_z(outside) + shift_z_ > layout.gauge_depth,
                    "Track: the rail profile does not reach gauge_depth below its top on the gauge side");
     for (int k = 0; k < 200 && inside - outside > 1e-13; ++k) {
@@ -71,8 +69,8 @@ class Track {
     }
     shift_y_ = layout.gauge / 2 - canted_y(inside);
     // Where the right rail profile begins and ends across the track (y increases with y_r).
-    first_y_ = canted_y(rail_.y_min) + shift_y_;
-    last_y_ = canted_y(rail_.y_max) + shift_y_;
+    first_y_ = canted_y(rail_.y_min()) + shift_y_;
+    last_y_ = canted_y(rail_.y_max()) + shift_y_;
   }
 
   /// This track's identity: a number no other track of the process has; a copy keeps it (the
@@ -128,7 +126,7 @@ class Track {
       const double dy_dyr = cos_ + sin_ * p.depth_slope, dz_dyr = -sin_ + cos_ * p.depth_slope;
       return ProfileValue<double>{(p.y - y) * dir_z - (p.z - z) * dir_y, dy_dyr * dir_z - dz_dyr * dir_y};
     };
-    const double low = rail_.y_min, high = rail_.y_max;
+    const double low = rail_.y_min(), high = rail_.y_max();
     std::optional<double> y_r;
     if (profile_y >= low && profile_y <= high) y_r = detail::newton_root(crossing, profile_y, low, high, 1e-13, 5e-8);
     if (!y_r) {
@@ -169,10 +167,10 @@ class Track {
       return ProfileValue<double>{cos_ * y_r + sin_ * at.value + shift_y_ - y, cos_ + sin_ * at.slope};
     };
     if (!(y >= first_y_ && y <= last_y_)) return std::nullopt;
-    if (guess >= rail_.y_min && guess <= rail_.y_max) {  // false for NaN
-      if (const auto root = detail::newton_root(offset, guess, rail_.y_min, rail_.y_max, 1e-13, 5e-8)) return root;
+    if (guess >= rail_.y_min() && guess <= rail_.y_max()) {  // false for NaN
+      if (const auto root = detail::newton_root(offset, guess, rail_.y_min(), rail_.y_max(), 1e-13, 5e-8)) return root;
     }
-    return detail::bracketed_root(offset, rail_.y_min, first_y_ - y, rail_.y_max, (y - shift_y_) / cos_, 1e-13);
+    return detail::bracketed_root(offset, rail_.y_min(), first_y_ - y, rail_.y_max(), (y - shift_y_) / cos_, 1e-13);
   }
 
   ProfileCurve rail_;

@@ -82,8 +82,6 @@ class Wheelset {
     FASTNORM_CHECK(std::isfinite(layout.taping_line_half_distance) && layout.taping_line_half_distance > 0,
                    fastnorm::detail::describe("Wheelset: taping_line_half_distance must be positive (m)",
                                               layout.taping_line_half_distance));
-    FASTNORM_CHECK(static_cast<bool>(wheel_.evaluate) && wheel_.y_min < wheel_.y_max,
-                   "Wheelset: the wheel profile needs a function and y_min < y_max");
     find_flange_climb_point();
   }
 
@@ -159,8 +157,8 @@ class Wheelset {
   /// the tip and the taping line (y_w = 0), and the climb point its end on the tread side.
   void find_flange_climb_point() {
     const double step = 1e-5;
-    double tip_y = wheel_.y_min, largest_radius = -std::numeric_limits<double>::infinity();
-    for (double y = wheel_.y_min; y <= wheel_.y_max; y += step) {
+    double tip_y = wheel_.y_min(), largest_radius = -std::numeric_limits<double>::infinity();
+    for (double y = wheel_.y_min(); y <= wheel_.y_max(); y += step) {
       const double radius = wheel_.evaluate(y).value;
       if (radius > largest_radius) largest_radius = radius, tip_y = y;
     }
