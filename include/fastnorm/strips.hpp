@@ -53,15 +53,17 @@ Eigen::Matrix<Scalar, Eigen::Dynamic, 1> segment_coordinates(Eigen::Index count)
 template <typename Scalar>
 void segment_strips(const Grid<Scalar>& grid, const std::vector<Eigen::Index>& set, std::vector<Segment>& segments) {
   segments.clear();
+  Eigen::Index strip_end = 0;  // one past the last element of the current segment's strip
   for (std::size_t position = 0; position < set.size(); ++position) {
     const Eigen::Index k = set[position];
     FASTNORM_CHECK(k >= 0 && k < grid.size(), detail::describe("segment_strips: element out of the grid", k));
     FASTNORM_CHECK(position == 0 || set[position - 1] < k, "segment_strips: set must be sorted and unique");
-    const Eigen::Index i = grid.i_of(k), j = grid.j_of(k);
-    if (position > 0 && set[position - 1] == k - 1 && i > 0) {
-      ++segments.back().count;  // continues the run (same strip: i > 0)
+    if (position > 0 && set[position - 1] == k - 1 && k < strip_end) {
+      ++segments.back().count;  // continues the run in its strip
     } else {
-      segments.push_back(Segment{j, i, 1, static_cast<Eigen::Index>(position)});
+      const Eigen::Index j = grid.j_of(k);  // a division per segment, not per element
+      strip_end = (j + 1) * grid.mx();
+      segments.push_back(Segment{j, k - j * grid.mx(), 1, static_cast<Eigen::Index>(position)});
     }
   }
 }

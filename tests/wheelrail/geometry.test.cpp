@@ -298,7 +298,7 @@ TEST_CASE("The contact search continued from step to step samples as the full sa
   const wr::Track track;
   const wr::Wheelset wheelset;
   const auto base = wr::rigid_contact_pose(track, wheelset, 0, 0);
-  int poses = 0, penetrating = 0, different = 0;
+  int poses = 0, penetrating = 0, different = 0, outside_stretches = 0, stretches_not_apart = 0;
   std::size_t taken = 0, taken_cold = 0;
   for (double speed : {1.0, 5.0, 40.0}) {  // the benchmark's motion, 5× and 40× as fast per step
     std::array<wr::GapSampler, 2> samplers;
@@ -314,6 +314,18 @@ TEST_CASE("The contact search continued from step to step samples as the full sa
         const auto cold = wr::sample_gap_near_contact(track, wheelset, side, pose);
         REQUIRE(full.size() == near.size());
         ++poses;
+        // Every sample below candidate_gap lies in a stretch the sampler refined (all that
+        // contact_regions scans), and the stretches come in order, apart.
+        const auto& stretches = sampler.refined();
+        for (std::size_t s = 1; s < stretches.size(); ++s) {
+          stretches_not_apart += !(stretches[s].first > stretches[s - 1].second);
+        }
+        std::size_t s = 0;
+        for (std::size_t k = 0; k < full.size(); ++k) {
+          while (s < stretches.size() && stretches[s].second < k) ++s;
+          const bool inside = s < stretches.size() && stretches[s].first <= k;
+          outside_stretches += !inside && full[k].gap < wr::GapSampler::candidate_gap;
+        }
         for (std::size_t k = 0; k < full.size(); ++k) {
           taken += near[k].wheel.radius > 0;
           taken_cold += cold[k].wheel.radius > 0;
@@ -328,6 +340,8 @@ TEST_CASE("The contact search continued from step to step samples as the full sa
   CHECK(poses == 3 * 400 * 2);
   CHECK(penetrating > 100000);
   CHECK(different == 0);
+  CHECK(outside_stretches == 0);
+  CHECK(stretches_not_apart == 0);
   CHECK(taken < taken_cold);
   WARN("continued search: " << static_cast<double>(taken) / poses << " samples per wheel and pose, "
                             << static_cast<double>(taken_cold) / poses << " from scratch");

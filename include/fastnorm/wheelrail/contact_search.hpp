@@ -149,6 +149,7 @@ class GapSampler {
       double guess = std::isfinite(rail_y_before) ? 2 * rail_y - rail_y_before : rail_y;
       samples_[k] =
           gap_at(track, wheelset, side, detail::sample_y(profile, options.step, k), pose, rotation, tan_yaw, guess);
+      written_.push_back(k);
       rail_y_before = rail_y;
       rail_y = guess;
     };
@@ -168,7 +169,15 @@ class GapSampler {
       const double angle_change = std::abs(c.radius_slope) * std::abs(tan_now - tan_last) / std::sqrt(1 - sine * sine);
       return shift + turn * c.reach + c.radius * angle_change;
     };
-    samples_.assign(count + 1, GapSample{});
+    // Back to +∞ only what the last call wrote: the samples are thousands, a call takes a
+    // few hundred of them.
+    if (samples_.size() == count + 1) {
+      for (const std::size_t k : written_) samples_[k] = GapSample{};
+    } else {
+      samples_.assign(count + 1, GapSample{});
+    }
+    written_.clear();
+    refined_.clear();
     for (std::size_t c = 0; c < coarse_.size(); ++c) {
       Coarse& coarse = coarse_[c];
       const std::size_t k = std::min(c * coarse_stride, count);
@@ -184,6 +193,11 @@ class GapSampler {
     for (std::size_t first = 0; first < count; first += coarse_stride) {
       const std::size_t last_k = std::min(first + coarse_stride, count);
       if (!(std::min(samples_[first].gap, samples_[last_k].gap) < candidate_gap)) continue;
+      if (!refined_.empty() && refined_.back().second == first) {
+        refined_.back().second = last_k;
+      } else {
+        refined_.emplace_back(first, last_k);
+      }
       rail_y = rail_y_before = std::numeric_limits<double>::quiet_NaN();
       for (std::size_t k = first + 1; k < last_k; ++k) take(k);  // each from its neighbours' rail points
     }
@@ -192,6 +206,12 @@ class GapSampler {
 
   /// The next call takes every coarse sample.
   void reset() { last_pose_.reset(); }
+
+  /// The stretches [first, last] of samples the last call took every sample of, by
+  /// increasing y_w and apart from each other. Every sample with gap < candidate_gap, and so
+  /// every penetrating one, lies in one: a coarse one is the end of the stretches on both its
+  /// sides, the others are taken only inside them.
+  const std::vector<std::pair<std::size_t, std::size_t>>& refined() const { return refined_; }
 
   /// Every coarse_stride-th sample is taken first.
   static constexpr std::size_t coarse_stride = 10;
@@ -266,6 +286,8 @@ class GapSampler {
   double step_ = 0;
   std::optional<WheelsetPose> last_pose_;
   std::vector<GapSample> samples_;
+  std::vector<std::size_t> written_;  // the samples the last call took
+  std::vector<std::pair<std::size_t, std::size_t>> refined_;
   std::vector<Coarse> coarse_;
   std::vector<double> slope_bins_;  // largest |slope| per drift_limit of the right rail
 };
@@ -329,18 +351,20 @@ inline std::size_t contact_regions(const Track& track, const Wheelset& wheelset,
                                    std::vector<ContactRegion>& regions) {
   const std::vector<GapSample>& samples = sampler.sample(track, wheelset, side, pose, options);
   std::size_t count = 0;  // regions in use; the others keep their storage until the end
-  for (std::size_t k = 0; k < samples.size(); ++k) {
-    if (!(samples[k].gap < 0)) continue;
-    if (k == 0 || !(samples[k - 1].gap < 0)) {
-      if (count == regions.size()) regions.emplace_back();
-      ContactRegion& region = regions[count++];
-      region.side = side;
-      region.deepest = samples[k];
-      region.slices.clear();
+  for (const auto& [first, last] : sampler.refined()) {  // the penetrating samples lie in these
+    for (std::size_t k = first; k <= last; ++k) {
+      if (!(samples[k].gap < 0)) continue;
+      if (k == first || !(samples[k - 1].gap < 0)) {  // the sample before a stretch is not penetrating
+        if (count == regions.size()) regions.emplace_back();
+        ContactRegion& region = regions[count++];
+        region.side = side;
+        region.deepest = samples[k];
+        region.slices.clear();
+      }
+      auto& region = regions[count - 1];
+      region.slices.push_back(samples[k]);
+      if (samples[k].gap < region.deepest.gap) region.deepest = samples[k];
     }
-    auto& region = regions[count - 1];
-    region.slices.push_back(samples[k]);
-    if (samples[k].gap < region.deepest.gap) region.deepest = samples[k];
   }
   for (std::size_t r = 0; r < count; ++r) {
     auto& region = regions[r];

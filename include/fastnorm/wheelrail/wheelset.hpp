@@ -71,7 +71,7 @@ class Wheelset {
     double radius = 0;       ///< ρ(y_w) (m)
     double radius_slope = 0; ///< dρ/dy_ws
     double angle = 0;        ///< θ, the wheel angle of the point (0 = lowest)
-    Vector3 point;           ///< in the track frame (m)
+    Vector3 point = Vector3::Zero();  ///< in the track frame (m)
   };
 
   /// @throws fastnorm::invalid_argument for non-positive dimensions
