@@ -4,6 +4,8 @@
 #include <catch2/catch.hpp>
 #include <fastnorm/fastnorm.hpp>
 
+#include <Eigen/Geometry>
+
 #include <array>
 #include <filesystem>
 
@@ -97,6 +99,32 @@ TEST_CASE("Yaw moves the contact along the locus as §6.3 states", "[wheelrail][
   const auto two_degrees = wr::smallest_gap(track, wheelset, wr::Side::right, {0, 0, 0, 2 * fastnorm::pi<> / 180});
   CHECK(two_degrees.wheel.point.x() * 1e3 == Approx(-26.027).margin(1e-3));
   CHECK(two_degrees.wheel.profile_y * 1e3 == Approx(4.897).margin(3e-3));
+}
+
+TEST_CASE("A locus point is where the wheel's surface normal has no forward component", "[wheelrail][geometry]") {
+  // The wheel surface P(y_w, θ) = C + R·(ρ sin θ, y_ws, ρ cos θ); its normal by central
+  // differences, independently of the closed form sin θ = −ρ'·tan ψ that locus() uses.
+  const wr::Wheelset wheelset;
+  for (const wr::Side side : {wr::Side::left, wr::Side::right}) {
+    for (const double yaw : {-20e-3, 5e-3, 20e-3}) {
+      const wr::WheelsetPose pose{2e-3, 1e-4, 1e-3, yaw};
+      const Eigen::Matrix3d rotation = wr::Wheelset::rotation(pose);
+      for (const double profile_y : {-30e-3, -10e-3, 0.0, 15e-3}) {
+        const auto locus = wheelset.locus(side, profile_y, pose, rotation);
+        auto surface = [&](double y_w, double angle) {
+          const double rho = wheelset.radius(side, y_w).value;
+          const Eigen::Vector3d on_wheel(rho * std::sin(angle), wheelset.axle_coordinate(side, y_w), rho * std::cos(angle));
+          return Eigen::Vector3d(wheelset.centre(pose) + rotation * on_wheel);
+        };
+        const double angle = std::asin(locus.angle_sine), step = 1e-6;
+        CHECK((surface(profile_y, angle) - locus.point).norm() < 1e-12);
+        const Eigen::Vector3d along_profile = surface(profile_y + step, angle) - surface(profile_y - step, angle);
+        const Eigen::Vector3d around = surface(profile_y, angle + step) - surface(profile_y, angle - step);
+        const Eigen::Vector3d normal = along_profile.cross(around).normalized();
+        CHECK(std::abs(normal.x()) < 1e-7);
+      }
+    }
+  }
 }
 
 TEST_CASE("The exact h reproduces the regression table of §4", "[wheelrail][geometry]") {

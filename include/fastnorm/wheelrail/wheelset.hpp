@@ -70,7 +70,7 @@ class Wheelset {
     double profile_y = 0;    ///< y_w, the wheel profile coordinate (m)
     double radius = 0;       ///< ρ(y_w) (m)
     double radius_slope = 0; ///< dρ/dy_ws
-    double angle = 0;        ///< θ, the wheel angle of the point (0 = lowest)
+    double angle_sine = 0;   ///< sin θ, θ the wheel angle of the point (0 = lowest)
     Vector3 point = Vector3::Zero();  ///< in the track frame (m)
   };
 
@@ -146,9 +146,8 @@ class Wheelset {
                    double tan_yaw) const {
     const auto rho = radius(side, profile_y);
     const double sine = std::clamp(-rho.slope * tan_yaw, -1.0, 1.0);
-    const double angle = std::asin(sine);
     const Vector3 on_wheel(rho.value * sine, axle_coordinate(side, profile_y), rho.value * std::sqrt(1 - sine * sine));
-    return {profile_y, rho.value, rho.slope, angle, centre(pose) + rotation * on_wheel};
+    return {profile_y, rho.value, rho.slope, sine, centre(pose) + rotation * on_wheel};
   }
 
  private:
