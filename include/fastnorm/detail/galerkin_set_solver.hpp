@@ -358,10 +358,13 @@ class GalerkinSetSolver {
         const Index q_t = unknowns_of(target.count);
         if (const Matrix* correlation = tables_.correlation(target.count, source.count, block_of_count)) {
           // Σ_d c(Δ + d, dj) K(d), d = −(n_s − 1) … n_t − 1: K's column a + q_t·b is entry (a, b).
+          // One dot product per entry rather than Kᵀ times the run: for runs of tens of
+          // entries Eigen's matrix–vector product spends more on its set-up than on the sums
+          // (measured: polynomial-edge:4:1 solve 0.85×, docs/performance.md §8).
           auto entries = memory_.block_entries.resize(q_t * q_s, 1);
-          entries.noalias() =
-              correlation->transpose() * influence_.run(target.first - source.first - (source.count - 1),
-                                                        target.strip - source.strip, target.count + source.count - 1);
+          const auto run = influence_.run(target.first - source.first - (source.count - 1),
+                                          target.strip - source.strip, target.count + source.count - 1);
+          for (Index e = 0; e < q_t * q_s; ++e) entries(e) = correlation->col(e).dot(run);
           store_block(next, t, s, Eigen::Map<const Matrix>(entries.data(), q_t, q_s));
         } else {
           direct.push_back(t);
