@@ -149,7 +149,6 @@ class GapSampler {
       double guess = std::isfinite(rail_y_before) ? 2 * rail_y - rail_y_before : rail_y;
       samples_[k] =
           gap_at(track, wheelset, side, detail::sample_y(profile, options.step, k), pose, rotation, tan_yaw, guess);
-      written_.push_back(k);
       rail_y_before = rail_y;
       rail_y = guess;
     };
@@ -169,14 +168,17 @@ class GapSampler {
       const double angle_change = std::abs(c.radius_slope) * std::abs(tan_now - tan_last) / std::sqrt(1 - sine * sine);
       return shift + turn * c.reach + c.radius * angle_change;
     };
-    // Back to +∞ only what the last call wrote: the samples are thousands, a call takes a
-    // few hundred of them.
+    // Back to +∞ only what the last call can have taken, its refined stretches and the
+    // coarse samples: a few hundred of the thousands.
     if (samples_.size() == count + 1) {
-      for (const std::size_t k : written_) samples_[k] = GapSample{};
+      for (const auto& stretch : refined_) {
+        std::fill(samples_.begin() + static_cast<std::ptrdiff_t>(stretch.first),
+                  samples_.begin() + static_cast<std::ptrdiff_t>(stretch.second) + 1, GapSample{});
+      }
+      for (std::size_t c = 0; c < coarse_.size(); ++c) samples_[std::min(c * coarse_stride, count)] = GapSample{};
     } else {
       samples_.assign(count + 1, GapSample{});
     }
-    written_.clear();
     refined_.clear();
     for (std::size_t c = 0; c < coarse_.size(); ++c) {
       Coarse& coarse = coarse_[c];
@@ -286,7 +288,6 @@ class GapSampler {
   double step_ = 0;
   std::optional<WheelsetPose> last_pose_;
   std::vector<GapSample> samples_;
-  std::vector<std::size_t> written_;  // the samples the last call took
   std::vector<std::pair<std::size_t, std::size_t>> refined_;
   std::vector<Coarse> coarse_;
   std::vector<double> slope_bins_;  // largest |slope| per drift_limit of the right rail
