@@ -108,7 +108,8 @@ class AnySolver : public detail::SolverBase<AnySolver<Scalar>, AnyWorkspace<Scal
   AnySolver(const std::string& name, const Grid<Scalar>& grid, const Material<Scalar>& material)
       : AnySolver(SolverSpec<Scalar>::parse(name), grid, material) {}
 
-  AnySolver(const AnySolver& other) : Base(other), spec_(other.spec_), model_(other.model_->clone()) {}
+  AnySolver(const AnySolver& other)
+      : Base(other), spec_(other.spec_), material_(other.material_), model_(other.model_->clone()) {}
   AnySolver& operator=(const AnySolver& other) {
     if (this != &other) *this = AnySolver(other);
     return *this;
@@ -121,6 +122,12 @@ class AnySolver : public detail::SolverBase<AnySolver<Scalar>, AnyWorkspace<Scal
   std::string name() const { return spec_.name(); }
   const SolverSpec<Scalar>& spec() const { return spec_; }
   const Grid<Scalar>& grid() const { return model_->grid(); }
+
+  /// A solver of this one's spec and material on `grid`: for a reduced kind,
+  /// ReducedSolver::for_grid (sharing the segment tables where they reach), else a new one.
+  AnySolver for_grid(const Grid<Scalar>& grid) const {
+    return AnySolver(spec_, material_, model_->for_grid(grid, spec_, material_));
+  }
 
   /// The chosen solver's solve(h, loading, workspace).
   Solution<Scalar> solve(const Eigen::Ref<const Vector>& undeformed_distance, const Loading<Scalar>& loading,
@@ -142,6 +149,8 @@ class AnySolver : public detail::SolverBase<AnySolver<Scalar>, AnyWorkspace<Scal
     virtual Scalar normal_stiffness(const Solution<Scalar>& solution, Workspace& workspace) const = 0;
     virtual const Grid<Scalar>& grid() const = 0;
     virtual std::unique_ptr<Model> clone() const = 0;
+    virtual std::unique_ptr<Model> for_grid(const Grid<Scalar>& grid, const SolverSpec<Scalar>& spec,
+                                            const Material<Scalar>& material) const = 0;
   };
 
   template <typename Solver>
@@ -156,8 +165,19 @@ class AnySolver : public detail::SolverBase<AnySolver<Scalar>, AnyWorkspace<Scal
     }
     const Grid<Scalar>& grid() const override { return solver.grid(); }
     std::unique_ptr<Model> clone() const override { return std::make_unique<Holder>(solver); }
+    std::unique_ptr<Model> for_grid(const Grid<Scalar>& grid, const SolverSpec<Scalar>& spec,
+                                    const Material<Scalar>& material) const override {
+      if constexpr (detail::has_for_grid<Solver>) {
+        return std::make_unique<Holder>(solver.for_grid(grid));
+      } else {
+        return std::make_unique<Holder>(SolverFromSpec<Solver>::make(spec, grid, material));
+      }
+    }
     Solver solver;
   };
+
+  AnySolver(const SolverSpec<Scalar>& spec, const Material<Scalar>& material, std::unique_ptr<Model> model)
+      : spec_(spec), material_(material), model_(std::move(model)) {}
 
   template <typename Solver>
   void adopt(const Grid<Scalar>& grid, const Material<Scalar>& material) {
@@ -165,6 +185,7 @@ class AnySolver : public detail::SolverBase<AnySolver<Scalar>, AnyWorkspace<Scal
   }
 
   SolverSpec<Scalar> spec_;
+  Material<Scalar> material_;
   std::unique_ptr<Model> model_;
 };
 
@@ -172,7 +193,7 @@ class AnySolver : public detail::SolverBase<AnySolver<Scalar>, AnyWorkspace<Scal
 // below, a program linked with fastnorm::precompiled does not compile every solver again.
 template <typename Scalar>
 AnySolver<Scalar>::AnySolver(const SolverSpec<Scalar>& spec, const Grid<Scalar>& grid, const Material<Scalar>& material)
-    : spec_(spec) {
+    : spec_(spec), material_(material) {
   spec_.validate();
   using Kind = typename SolverSpec<Scalar>::Kind;
   switch (spec_.kind) {

@@ -8,6 +8,7 @@
 #include <Eigen/Core>
 #include <cstdint>
 #include <memory>
+#include <utility>
 
 #include "fastnorm/bases.hpp"
 #include "fastnorm/detail/active_set_loop.hpp"
@@ -77,11 +78,16 @@ class ReducedSolver : public detail::SolverBase<ReducedSolver<Basis, Scalar>, Re
   /// @throws fastnorm::invalid_argument for invalid options
   ReducedSolver(const Grid<Scalar>& grid, const Material<Scalar>& material, Basis basis = Basis(),
                 Options options = {})
-      : influence_(std::make_shared<const InfluenceTable<Scalar>>(grid, material)),
-        basis_(basis),
-        options_(options),
-        tables_(std::make_shared<detail::SegmentTables<Scalar>>(grid.mx(), options.table_budget_bytes)) {
-    options_.validate();
+      : ReducedSolver(grid, material, std::move(basis), options, nullptr) {}
+
+  /// A solver of this one's material, basis and options on `grid`, sharing this one's
+  /// segment tables (and their budget) if `grid` has its element sizes and no more elements
+  /// either way; else with tables of its own. What a model that meets many grid sizes uses
+  /// so that each table is built once (docs/method.md §3): make a solver on the largest
+  /// grid, then one for_grid per size met. The answers are those of a solver made anew on
+  /// `grid`, to the last digit.
+  ReducedSolver for_grid(const Grid<Scalar>& grid) const {
+    return ReducedSolver(grid, material_, basis_, options_, tables_);
   }
 
   const Grid<Scalar>& grid() const { return influence_->grid(); }
@@ -119,14 +125,30 @@ class ReducedSolver : public detail::SolverBase<ReducedSolver<Basis, Scalar>, Re
     return detail::set_stiffness(set_solver, solution, workspace.loop_, grid().element_area());
   }
 
-  /// Memory the segment tables take now (bytes); shared with copies of this solver.
+  /// Memory the segment tables take now (bytes); shared with copies of this solver and
+  /// the solvers for_grid made from it that share its tables.
   std::size_t table_bytes() const { return tables_->used_bytes(); }
 
  private:
+  /// With `shared` tables if they cover `grid`; else tables of its own.
+  ReducedSolver(const Grid<Scalar>& grid, const Material<Scalar>& material, Basis basis, Options options,
+                std::shared_ptr<detail::SegmentTables<Scalar>> shared)
+      : influence_(std::make_shared<const InfluenceTable<Scalar>>(grid, material)),
+        material_(material),
+        basis_(std::move(basis)),
+        options_(options) {
+    options_.validate();
+    tables_ = shared && shared->covers(*influence_)
+                  ? std::move(shared)
+                  : std::make_shared<detail::SegmentTables<Scalar>>(influence_, options_.table_budget_bytes);
+  }
+
   std::shared_ptr<const InfluenceTable<Scalar>> influence_;
+  Material<Scalar> material_;
   Basis basis_;
   Options options_;
-  // Built on first use; h-independent, so copies share them (thread-safe).
+  // Built on first use; h-independent, so copies and for_grid's solvers share them
+  // (thread-safe).
   std::shared_ptr<detail::SegmentTables<Scalar>> tables_;
   std::uint64_t id_ = detail::new_object_id();
 };

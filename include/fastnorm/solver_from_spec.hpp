@@ -7,6 +7,8 @@
 /// traits. Including this header instantiates nothing.
 
 #include <string>
+#include <type_traits>
+#include <utility>
 
 #include "fastnorm/bases.hpp"
 #include "fastnorm/cg_solver.hpp"
@@ -86,6 +88,16 @@ struct SolverFromSpec<ReducedSolver<Basis, Scalar>> {
     return ReducedSolver<Basis, Scalar>(grid, material, BasisFromSpec<Basis>::make(spec), spec.reduced_options());
   }
 };
+
+namespace detail {
+/// Whether `Solver` has `for_grid(grid)`, a solver for another grid that shares what it can
+/// (ReducedSolver, AnySolver); a model builds its solvers per grid size through it.
+template <typename Solver, typename = void>
+inline constexpr bool has_for_grid = false;
+template <typename Solver>
+inline constexpr bool has_for_grid<
+    Solver, std::void_t<decltype(std::declval<const Solver&>().for_grid(std::declval<const Solver&>().grid()))>> = true;
+}  // namespace detail
 
 /// Checks that a solver of type `Solver` can solve `spec` (its kind is the type's, its
 /// settings valid); `where` names the field in the message.

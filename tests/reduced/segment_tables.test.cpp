@@ -5,6 +5,7 @@
 #include <fastnorm/detail/segment_tables.hpp>
 
 #include <functional>
+#include <memory>
 
 #include "support/surfaces.hpp"
 
@@ -20,15 +21,18 @@ std::vector<Eigen::Index> run_of(const fastnorm::Grid<>& grid, Eigen::Index firs
   return elements;
 }
 
-/// Checks the segment tables of `basis` on a small grid against dense products.
+/// Checks the segment tables of `basis` on a small grid against dense products; the tables
+/// are made for a grid `extra` elements larger either way (read through an offset).
 template <typename Basis>
 struct TableCheck {
-  explicit TableCheck(const Basis& b) : basis(b) {}
+  TableCheck(const Basis& b, Eigen::Index extra = 0) : basis(b), extent(grid.mx() + extra, grid.my() + extra, grid.dx(), grid.dy()) {}
   Basis basis;
   Eigen::Index q = basis.unknowns();
   fastnorm::Grid<> grid{23, 9, 3e-4, 4e-4};
+  fastnorm::Grid<> extent;
   fastnorm::InfluenceTable<> influence{grid, steel};
-  fastnorm::detail::SegmentTables<double> tables{grid.mx(), std::size_t(1) << 24};
+  fastnorm::detail::SegmentTables<double> tables{std::make_shared<const fastnorm::InfluenceTable<>>(extent, steel),
+                                                 std::size_t(1) << 24};
   std::function<Eigen::MatrixXd(Eigen::Index)> block_of = [this](Eigen::Index count) {
     return basis.template block<double>(count);
   };
@@ -59,7 +63,8 @@ struct TableCheck {
   void displacements() {
     const Eigen::VectorXd alpha = Eigen::VectorXd::LinSpaced(q, 1.0, -0.5);
     for (Eigen::Index n_s : {q + 1, Eigen::Index(11), grid.mx()}) {
-      const auto table = tables.displacement(n_s, block_of, influence);
+      REQUIRE(tables.covers(influence));
+      const auto table = tables.displacement(n_s, block_of, grid.mx());
       REQUIRE(table);
       for (Eigen::Index first_s : {Eigen::Index(0), grid.mx() - n_s}) {
         const Eigen::Index strip_s = 3;
@@ -88,26 +93,79 @@ TEST_CASE("Correlation tables give the Galerkin blocks A_t' C_ts A_s", "[reduced
 }
 
 TEST_CASE("Displacement tables give the displacement of a segment's basis functions", "[reduced][correlation]") {
-  TableCheck<fastnorm::EllipticBasis>(fastnorm::EllipticBasis()).displacements();
-  TableCheck<fastnorm::PolynomialBasis>(fastnorm::PolynomialBasis(4)).displacements();
-  TableCheck<fastnorm::PolynomialEdgeBasis>(fastnorm::PolynomialEdgeBasis(fastnorm::PolynomialBasis(2), 2))
-      .displacements();
+  for (Eigen::Index extra : {0, 7}) {  // tables of this grid, and of a larger one read by offset
+    INFO("tables made for a grid " << extra << " elements larger");
+    TableCheck<fastnorm::EllipticBasis>(fastnorm::EllipticBasis(), extra).displacements();
+    TableCheck<fastnorm::PolynomialBasis>(fastnorm::PolynomialBasis(4), extra).displacements();
+    TableCheck<fastnorm::PolynomialEdgeBasis>(fastnorm::PolynomialEdgeBasis(fastnorm::PolynomialBasis(2), 2), extra)
+        .displacements();
+  }
+}
+
+TEST_CASE("Segment tables cover grids of their element sizes and E* up to their extent", "[reduced][correlation]") {
+  const fastnorm::Grid<> extent(30, 20, 3e-4, 4e-4);
+  const fastnorm::detail::SegmentTables<double> tables(std::make_shared<const fastnorm::InfluenceTable<>>(extent, steel),
+                                                       std::size_t(1) << 20);
+  auto covers = [&](const fastnorm::Grid<>& grid, const fastnorm::Material<>& material) {
+    return tables.covers(fastnorm::InfluenceTable<>(grid, material));
+  };
+  CHECK(covers(extent, steel));
+  CHECK(covers(fastnorm::Grid<>(12, 20, 3e-4, 4e-4, -1e-3, 2e-3), steel));  // the origin does not matter
+  CHECK_FALSE(covers(fastnorm::Grid<>(31, 20, 3e-4, 4e-4), steel));
+  CHECK_FALSE(covers(fastnorm::Grid<>(30, 21, 3e-4, 4e-4), steel));
+  CHECK_FALSE(covers(fastnorm::Grid<>(20, 10, 3.1e-4, 4e-4), steel));
+  CHECK_FALSE(covers(fastnorm::Grid<>(20, 10, 3e-4, 4.1e-4), steel));
+  CHECK_FALSE(covers(fastnorm::Grid<>(20, 10, 3e-4, 4e-4), fastnorm::Material<>(2.1e11, 0.28)));
+}
+
+TEMPLATE_TEST_CASE("A solver for_grid shares the tables and answers as a new solver on that grid",
+                   "[reduced][correlation]", fastnorm::EllipticBasis, fastnorm::PolynomialBasis,
+                   fastnorm::PolynomialEdgeBasis) {
+  const auto grid = fastnorm::test::two_bumps_grid();
+  const Eigen::VectorXd h = fastnorm::test::two_bumps(grid, 3e-5);
+  const fastnorm::ReducedSolver<TestType> largest(
+      fastnorm::Grid<>(grid.mx() + 9, grid.my() + 4, grid.dx(), grid.dy()), steel);
+  const auto sibling = largest.for_grid(grid);
+  const fastnorm::ReducedSolver<TestType> alone(grid, steel);
+  CHECK(sibling.grid().mx() == grid.mx());
+  CHECK(sibling.grid().x0() == grid.x0());
+  for (const auto& loading : {fastnorm::Loading<>::approach(), fastnorm::Loading<>::force(2e3)}) {
+    const auto reference = alone.solve(h, loading);
+    const auto solution = sibling.solve(h, loading);
+    REQUIRE(reference.ok());
+    CHECK(solution.iterations == reference.iterations);
+    CHECK((solution.in_contact == reference.in_contact).all());
+    CHECK((solution.pressure - reference.pressure).cwiseAbs().maxCoeff() == 0.0);  // the same tables' entries
+  }
+  CHECK(largest.table_bytes() > 0);  // built by the sibling's solves, in the shared tables
+  CHECK(largest.table_bytes() == sibling.table_bytes());
+  CHECK(largest.table_bytes() >= alone.table_bytes());
+
+  // A grid beyond the extent, or of other element sizes, gets tables of its own.
+  const auto beyond = largest.for_grid(fastnorm::Grid<>(grid.mx() + 10, grid.my(), grid.dx(), grid.dy()));
+  const auto other_sizes = largest.for_grid(fastnorm::Grid<>(grid.mx(), grid.my(), grid.dx() * 1.5, grid.dy()));
+  CHECK(beyond.table_bytes() == 0);
+  CHECK(other_sizes.table_bytes() == 0);
+  const std::size_t shared = largest.table_bytes();
+  REQUIRE(beyond.solve(Eigen::VectorXd::Constant(beyond.grid().size(), -1e-6), fastnorm::Loading<>::approach()).ok());
+  CHECK(beyond.table_bytes() > 0);
+  CHECK(largest.table_bytes() == shared);
 }
 
 TEST_CASE("Segment tables stay within their memory budget", "[reduced][correlation]") {
   const fastnorm::EllipticBasis basis;
   auto block_of = [&](Eigen::Index count) { return basis.block<double>(count); };
   const std::size_t one_table = sizeof(double) * (10 + 10 - 1) * 4;  // n_t = n_s = 10, q = 2
-  fastnorm::detail::SegmentTables<double> correlations(20, one_table);
+  const auto influence = std::make_shared<const fastnorm::InfluenceTable<>>(fastnorm::Grid<>(20, 4, 1e-3, 1e-3), steel);
+  fastnorm::detail::SegmentTables<double> correlations(influence, one_table);
   CHECK(correlations.correlation(10, 10, block_of) != nullptr);
   CHECK(correlations.used_bytes() == one_table);
   CHECK(correlations.correlation(10, 10, block_of) == correlations.correlation(10, 10, block_of));  // built once
   CHECK(correlations.correlation(10, 9, block_of) == nullptr);  // no room left
   CHECK(correlations.used_bytes() == one_table);
-  const fastnorm::InfluenceTable<> influence(fastnorm::Grid<>(20, 4, 1e-3, 1e-3), steel);
-  CHECK_FALSE(correlations.displacement(10, block_of, influence));  // one budget for both kinds
+  CHECK_FALSE(correlations.displacement(10, block_of, 20));  // one budget for both kinds
 
-  fastnorm::detail::SegmentTables<double> none(20, 0);
+  fastnorm::detail::SegmentTables<double> none(influence, 0);
   CHECK(none.correlation(3, 3, block_of) == nullptr);
   CHECK(none.used_bytes() == 0);
 }

@@ -333,6 +333,42 @@ TEST_CASE("reset() forgets: a pose after other poses and a reset is bit for bit 
   check_reset_forgets<fastnorm::AnySolver<>>("polynomial:4");
 }
 
+namespace {
+
+// The solvers of every box size share one set of segment tables (docs/wheel-rail.md §9):
+// their answers are bit for bit those of solvers with tables of their own (a shared table
+// box smaller than any box), along poses that meet several box sizes.
+template <typename Solver>
+void check_shared_tables(const char* name) {
+  INFO(name);
+  auto options = coarse(name);
+  wr::WheelsetContact<Solver> shared(wr::Track(), wr::Wheelset(), options);
+  options.shared_table_box = 8;  // no box fits: tables per box size, as before sharing
+  wr::WheelsetContact<Solver> own(wr::Track(), wr::Wheelset(), options);
+  CHECK(shared.options().table_box() == 32);  // 1.5 × 20 elements, rounded up to 8
+  auto pose = pressed_pose();
+  for (double shift : {0.0, -3e-3, 3.6e-3, 3.9e-3, 4.1e-3, 5e-3, 1e-3}) {
+    pose.y = shift;
+    check_same_patches(shared.evaluate(pose), own.evaluate(pose));
+  }
+  CHECK(shared.solver_count() >= 3);
+  CHECK(shared.solver_count() == own.solver_count());
+}
+
+}  // namespace
+
+TEST_CASE("Solvers of all box sizes share the segment tables, with the answers of tables per box", "[wheelrail][model]") {
+  check_shared_tables<fastnorm::ReducedSolver<fastnorm::EllipticBasis>>("elliptic");
+  check_shared_tables<fastnorm::ReducedSolver<fastnorm::PolynomialEdgeBasis>>("polynomial-edge:4:1");
+  check_shared_tables<fastnorm::AnySolver<>>("polynomial:4");
+  check_shared_tables<fastnorm::NormSolver<>>("norm");  // no segment tables: the option changes nothing
+
+  auto options = coarse("elliptic");
+  options.shared_table_box = -1;
+  CHECK_THROWS_WITH(wr::WheelsetContact<>(wr::Track(), wr::Wheelset(), options),
+                    Catch::Matchers::Contains("shared_table_box"));
+}
+
 TEST_CASE("The same pose reached along different histories: forces within the grid's and the basis's cold bounds",
           "[wheelrail][model]") {
   // An answer depends on the committed history in two ways (docs/wheel-rail.md §9): the

@@ -19,7 +19,7 @@
 namespace fastnorm {
 namespace detail {
 
-/// What a Galerkin set solver keeps: the basis blocks per segment length, the assemblies of
+/// What a Galerkin set solver keeps: the assemblies of
 /// Aᵀ C_II A with their Cholesky factors for the sets of the current solve and of the
 /// previous one, and the workspace of one set. All
 /// of it keeps its storage (assemblies no longer needed wait in `spare`), so the loop stops
@@ -36,8 +36,6 @@ struct GalerkinMemory {
     InPlaceCholesky<Scalar> cholesky;
     Index unknowns() const { return matrix.rows(); }
   };
-  std::vector<Matrix> blocks;       // basis block per segment element count
-  std::vector<Matrix> projections;  // its pseudo-inverse, per count (α from p = A α)
   std::vector<Assembly> path;       // the sets of this solve
   std::vector<Assembly> last_path;  // the sets of the previous solve of a sequence
   std::vector<Assembly> spare;      // storage to reuse
@@ -172,7 +170,7 @@ class GalerkinSetSolver {
     for (const Segment& source : assembly.segments) {
       const auto source_pressure = pressure.segment(source.set_position, source.count);
       const auto table = is_identity(source.count) ? DisplacementTable<Scalar>()
-                                                   : tables_.displacement(source.count, block_of_count, influence_);
+                                                   : tables_.displacement(source.count, block_of_count, mx);
       if (table) {
         auto alpha = memory_.coefficients.resize(basis_.unknowns(), 1);  // q ≤ n_s here
         alpha.noalias() = projection_of(source.count) * source_pressure;
@@ -198,22 +196,16 @@ class GalerkinSetSolver {
   bool is_identity(Index count) const { return count <= basis_.unknowns(); }
   Index unknowns_of(Index count) const { return is_identity(count) ? count : basis_.unknowns(); }
 
-  /// The basis block of a segment depends only on its element count: cached per count.
+  /// The basis block of a segment depends only on its element count: kept per count with
+  /// the segment tables, which every workspace and grid size of the solver share.
   const Matrix& basis_of(Index count) {
-    auto& blocks = memory_.blocks;
-    if (static_cast<Index>(blocks.size()) <= count) blocks.resize(static_cast<std::size_t>(count) + 1);
-    auto& block = blocks[static_cast<std::size_t>(count)];
-    if (block.size() == 0) block = basis_.template block<Scalar>(count);
-    return block;
+    return tables_.basis(count, [this](Index n) { return basis_.template block<Scalar>(n); });
   }
 
-  /// The pseudo-inverse A⁺ of the basis block of `count` elements (cached): α = A⁺ p for p = A α.
+  /// The pseudo-inverse A⁺ of the basis block of `count` elements (kept as basis_of):
+  /// α = A⁺ p for p = A α.
   const Matrix& projection_of(Index count) {
-    auto& projections = memory_.projections;
-    if (static_cast<Index>(projections.size()) <= count) projections.resize(static_cast<std::size_t>(count) + 1);
-    auto& projection = projections[static_cast<std::size_t>(count)];
-    if (projection.size() == 0) projection = Eigen::CompleteOrthogonalDecomposition<Matrix>(basis_of(count)).pseudoInverse();
-    return projection;
+    return tables_.projection(count, [this](Index n) { return basis_.template block<Scalar>(n); });
   }
 
   /// Position of `segment` in the assembly `previous`, or −1.

@@ -21,16 +21,25 @@
 ///
 /// Each table is built on first use and kept within one memory budget; past it the solver
 /// falls back to the direct products, which give the same numbers more slowly.
+///
+/// K does not depend on the grid, and W only through the offsets it covers: on a grid of
+/// the same element sizes and E* with no more elements either way, W is a part of the
+/// larger grid's table (its entries are sums of the same influence coefficients). So one
+/// set of tables, made for the largest grid, serves the solvers of every smaller one
+/// (ReducedSolver::for_grid): a model that meets many grid sizes builds each table once.
 
 #include <Eigen/Core>
+#include <Eigen/QR>
 #include <algorithm>
 #include <atomic>
 #include <cstddef>
 #include <memory>
 #include <mutex>
+#include <utility>
 #include <vector>
 
 #include "fastnorm/error.hpp"
+#include "fastnorm/grid.hpp"
 #include "fastnorm/influence.hpp"
 
 namespace fastnorm {
@@ -45,20 +54,22 @@ class DisplacementTable {
   using Matrix = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;
 
   DisplacementTable() = default;
-  /// `values`: q × (rows·my), column dj·rows + r holding W_0 … W_{q−1} at row r.
-  DisplacementTable(const Matrix* values, Index rows) : values_(values), rows_(rows) {}
+  /// `values`: q × (rows·my), column dj·rows + r holding W_0 … W_{q−1} at row r of the
+  /// tables' grid, which is row r − `row_offset` of the solver's (mx smaller by the offset).
+  DisplacementTable(const Matrix* values, Index rows, Index row_offset)
+      : values_(values), rows_(rows), row_offset_(row_offset) {}
 
   explicit operator bool() const { return values_ != nullptr; }
 
   /// u(k) += Σ_b α_b W_b(d, dj) at the rows r = d + mx − n = row + k, k < u.size()
-  /// (d = i_t − i_s), b in order (so the sums are those of adding the functions one after
+  /// (d = i_t − i_s, mx the solver's grid's), b in order (so the sums are those of adding the functions one after
   /// the other). Written out: the join check's runs are a few elements long, and building
   /// Eigen's block expressions of a slice of this layout for each run and function cost
   /// more than the arithmetic (measured: a warm elliptic solve 40 % slower).
   template <typename Coefficients, typename Displacement>
   void add_to(const Coefficients& alpha, Index row, Index dj, Displacement&& u) const {
     const Index q = values_->rows();
-    const Scalar* w = values_->data() + (dj * rows_ + row) * q;
+    const Scalar* w = values_->data() + (dj * rows_ + row + row_offset_) * q;
     for (Index k = 0; k < u.size(); ++k, w += q) {
       Scalar sum = u(k);
       for (Index b = 0; b < q; ++b) sum += alpha(b) * w[b];
@@ -68,26 +79,57 @@ class DisplacementTable {
 
  private:
   const Matrix* values_ = nullptr;
-  Index rows_ = 0;
+  Index rows_ = 0, row_offset_ = 0;
 };
 
-/// The tables of Eqs. (M2) and (M3) for segments up to `longest` elements. Safe to share
-/// between threads (a solver's const solve may run on several): a table, once published,
-/// never changes.
+/// The tables of Eqs. (M2) and (M3) for the grids that `extent`'s grid covers (covers()).
+/// Safe to share between threads and solvers (a solver's const solve may run on several):
+/// a table, once published, never changes.
 template <typename Scalar>
 class SegmentTables {
  public:
   using Index = Eigen::Index;
   using Matrix = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;
 
-  /// @param longest the longest segment (grid.mx())
+  /// @param extent the influence table of the largest grid served; segments up to its mx
   /// @param budget_bytes most memory all tables together may take
-  SegmentTables(Index longest, std::size_t budget_bytes)
-      : longest_(longest),
+  SegmentTables(std::shared_ptr<const InfluenceTable<Scalar>> extent, std::size_t budget_bytes)
+      : extent_(std::move(extent)),
+        longest_(extent_->grid().mx()),
         budget_bytes_(budget_bytes),
-        published_(static_cast<std::size_t>((longest + 1) * (longest + 2))),
-        refused_(published_.size()) {
-    FASTNORM_ASSERT(longest >= 1);
+        published_(static_cast<std::size_t>((longest_ + 1) * (longest_ + 4))),
+        refused_(published_.size()) {}
+
+  /// Whether these tables serve a solver of `influence`: the same element sizes and E*, and
+  /// no more elements either way than the extent's grid.
+  bool covers(const InfluenceTable<Scalar>& influence) const {
+    const Grid<Scalar>& grid = influence.grid();
+    const Grid<Scalar>& largest = extent_->grid();
+    return grid.mx() <= largest.mx() && grid.my() <= largest.my() && grid.dx() == largest.dx() &&
+           grid.dy() == largest.dy() && influence.combined_modulus() == extent_->combined_modulus();
+  }
+
+  /// The basis block of a segment of `count` elements, `block_of(count)` (n × q), built
+  /// once. Blocks and their pseudo-inverses are outside the budget: n·q values each, and
+  /// every solve needs them.
+  template <typename BlockOf>
+  const Matrix& basis(Index count, const BlockOf& block_of) {
+    FASTNORM_ASSERT(count >= 1 && count <= longest_);
+    const auto slot = static_cast<std::size_t>((longest_ + 1) * (longest_ + 2) + count);
+    if (const Matrix* block = published(slot)) return *block;
+    auto block = std::make_unique<Matrix>(block_of(count));
+    return *adopt(slot, block);
+  }
+
+  /// The pseudo-inverse A⁺ (q × n) of basis(count): α = A⁺ p for p = A α; built once.
+  template <typename BlockOf>
+  const Matrix& projection(Index count, const BlockOf& block_of) {
+    FASTNORM_ASSERT(count >= 1 && count <= longest_);
+    const auto slot = static_cast<std::size_t>((longest_ + 1) * (longest_ + 3) + count);
+    if (const Matrix* projection = published(slot)) return *projection;
+    auto inverse = std::make_unique<Matrix>(
+        Eigen::CompleteOrthogonalDecomposition<Matrix>(basis(count, block_of)).pseudoInverse());
+    return *adopt(slot, inverse);
   }
 
   /// K for a target of `target_count` and a source of `source_count` elements:
@@ -106,19 +148,22 @@ class SegmentTables {
                    [&]() { return correlate(target, source); });
   }
 
-  /// W for a source of `count` elements on `influence`'s grid (mx = longest), at rows
-  /// r = d + mx − n for d = i_t − i_s = −(mx − n) … mx − 1 and |dj| = 0 … my − 1; none when
-  /// the budget has no room for it.
+  /// W for a source of `count` elements, as a solver on a covered grid of `mx` elements
+  /// along x reads it (rows d + mx − n); stored on the extent's grid (mx = longest) at rows
+  /// r = d + longest − n for d = i_t − i_s = −(longest − n) … longest − 1 and |dj| = 0 …
+  /// my − 1. None when the budget has no room for it.
   template <typename BlockOf>
-  DisplacementTable<Scalar> displacement(Index count, const BlockOf& block_of, const InfluenceTable<Scalar>& influence) {
-    FASTNORM_ASSERT(count >= 1 && count <= longest_ && influence.grid().mx() == longest_);
+  DisplacementTable<Scalar> displacement(Index count, const BlockOf& block_of, Index mx) {
+    FASTNORM_ASSERT(count >= 1 && count <= mx && mx <= longest_);
     const auto slot = static_cast<std::size_t>((longest_ + 1) * (longest_ + 1) + count);
     const Index rows = 2 * longest_ - count;
-    if (const Matrix* table = published(slot)) return {table, rows};
+    if (const Matrix* table = published(slot)) return {table, rows, longest_ - mx};
     if (refused_[slot].load(std::memory_order_relaxed)) return {};
     const Matrix block = block_of(count);
-    return {publish(slot, rows * block.cols() * influence.grid().my(), [&]() { return displace(block, influence); }),
-            rows};
+    const Matrix* table =
+        publish(slot, rows * block.cols() * extent_->grid().my(), [&]() { return displace(block, *extent_); });
+    if (table == nullptr) return {};
+    return {table, rows, longest_ - mx};
   }
 
   /// Memory the tables take now (bytes).
@@ -139,12 +184,17 @@ class SegmentTables {
     }
     auto table = std::make_unique<Matrix>(build());
     FASTNORM_ASSERT(static_cast<Index>(table->size()) == entries);
+    const Matrix* kept = adopt(slot, table);
+    if (table) used_bytes_.fetch_sub(bytes);  // another thread's was kept
+    return kept;
+  }
+
+  /// Publishes `matrix` (taking it) as the entry of `slot` and returns it, unless another
+  /// thread was first: then that one, and `matrix` is left as it was.
+  const Matrix* adopt(std::size_t slot, std::unique_ptr<Matrix>& matrix) {
     const std::lock_guard<std::mutex> lock(owner_mutex_);
-    if (const Matrix* other = published(slot)) {  // another thread was first
-      used_bytes_.fetch_sub(bytes);
-      return other;
-    }
-    owned_.push_back(std::move(table));
+    if (const Matrix* other = published(slot)) return other;
+    owned_.push_back(std::move(matrix));
     published_[slot].store(owned_.back().get(), std::memory_order_release);
     return owned_.back().get();
   }
@@ -184,10 +234,12 @@ class SegmentTables {
     return table;
   }
 
+  std::shared_ptr<const InfluenceTable<Scalar>> extent_;
   Index longest_;
   std::size_t budget_bytes_;
   // Per slot: correlations at n_t·(longest + 1) + n_s, displacements after them at
-  // (longest + 1)² + n. Null until built; refused once the budget had no room.
+  // (longest + 1)² + n, then basis blocks at (longest + 1)(longest + 2) + n and projections
+  // at (longest + 1)(longest + 3) + n. Null until built; refused once the budget had no room.
   std::vector<std::atomic<const Matrix*>> published_;
   std::vector<std::atomic<bool>> refused_;
   std::atomic<std::size_t> used_bytes_{0};

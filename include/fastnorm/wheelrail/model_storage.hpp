@@ -6,6 +6,7 @@
 
 #include <Eigen/Core>
 #include <cstddef>
+#include <optional>
 #include <utility>
 #include <vector>
 
@@ -37,12 +38,22 @@ void resize_keeping_storage(std::vector<T>& used, std::vector<T>& spare, std::si
 }
 
 /// One solver per grid size met (element sizes fixed: solvers do not depend on the grid's
-/// origin), each with its influence and segment tables, and the workspaces with its storage
-/// that no patch holds at the moment.
+/// origin), each with its influence table, and the workspaces with its storage that no
+/// patch holds at the moment. The solvers of a reduced kind share one set of segment
+/// tables, those of a solver on the largest box (share_tables).
 template <typename Solver>
 class SolverCache {
  public:
   using Workspace = typename Solver::Workspace;
+
+  /// Makes the solver on `largest` whose segment tables the solvers of every grid it covers
+  /// share (ReducedSolver::for_grid), if `spec` is of a reduced kind and `Solver` has
+  /// for_grid; else nothing (each solver keeps its own tables).
+  void share_tables(const Grid<double>& largest, const SolverSpec<double>& spec, const Material<double>& material) {
+    if constexpr (fastnorm::detail::has_for_grid<Solver>) {
+      if (spec.is_reduced()) family_.emplace(SolverFromSpec<Solver>::make(spec, largest, material));
+    }
+  }
 
   /// The number of the solver of `grid`'s size, built from `spec` and `material` when it is
   /// met for the first time.
@@ -51,7 +62,7 @@ class SolverCache {
       const auto& known = slots_[s].solver.grid();
       if (known.mx() == grid.mx() && known.my() == grid.my()) return s;
     }
-    slots_.push_back({SolverFromSpec<Solver>::make(spec, grid, material), {}});
+    slots_.push_back({make(grid, spec, material), {}});
     return slots_.size() - 1;
   }
 
@@ -77,11 +88,19 @@ class SolverCache {
   }
 
  private:
+  Solver make(const Grid<double>& grid, const SolverSpec<double>& spec, const Material<double>& material) const {
+    if constexpr (fastnorm::detail::has_for_grid<Solver>) {
+      if (family_) return family_->for_grid(grid);
+    }
+    return SolverFromSpec<Solver>::make(spec, grid, material);
+  }
+
   struct Slot {
     Solver solver;
     std::vector<Workspace> spare;
   };
   std::vector<Slot> slots_;
+  std::optional<Solver> family_;  // share_tables' solver on the largest box, never solving
 };
 
 /// Result storage that no result patch holds at the moment, by length: Eigen's vectors keep

@@ -103,6 +103,8 @@ class WheelsetContact {
     options_.validate();
     check_spec_for<Solver>(options_.solver, "WheelsetContactOptions: solver");
     choose_element_sizes();
+    const Eigen::Index box = options_.table_box();
+    solvers_.share_tables(Grid<double>(box, box, dx_, ds_), options_.solver, options_.material);
   }
 
   const WheelsetContactOptions& options() const { return options_; }
@@ -112,8 +114,9 @@ class WheelsetContact {
   double element_length() const { return dx_; }
   double element_width() const { return ds_; }
 
-  /// How many solvers (grid sizes) the model has built so far: each holds its influence and
-  /// segment tables.
+  /// How many solvers (grid sizes) the model has built so far: each holds its influence
+  /// table, and those of a reduced kind share the segment tables of boxes up to
+  /// options().table_box() elements.
   std::size_t solver_count() const { return solvers_.size(); }
 
   /// Contact of both wheels at `pose`, normal only; the result stays valid until the next

@@ -4,6 +4,7 @@
 /// fixed for a model's life; the equilibrium's options contain them.
 
 #include <optional>
+#include <string>
 
 #include "fastnorm/error.hpp"
 #include "fastnorm/material.hpp"
@@ -78,6 +79,16 @@ struct WheelsetContactOptions {
   /// solve where the grid is unchanged.
   std::optional<bool> reduced_warm_start;
 
+  /// The largest patch box (elements, each direction) whose reduced solvers share one set
+  /// of segment tables (docs/wheel-rail.md §9): each table is built once for the model, not
+  /// once per box size, within one budget (SolverSpec::table_budget_bytes). 0 (default):
+  /// 1.5 × grid.elements rounded up to a multiple of 8 (96 for 60). A larger box gets tables
+  /// of its own.
+  Eigen::Index shared_table_box = 0;
+  /// shared_table_box, or its default.
+  Eigen::Index table_box() const {
+    return shared_table_box > 0 ? shared_table_box : (3 * grid.elements / 2 + 7) / 8 * 8;
+  }
   bool stiffness = true;  ///< compute each patch's dFn/dδ (one extra solve with the last factor)
   CreepOptions creep;     ///< creep forces, when evaluate is given velocities
 
@@ -95,6 +106,10 @@ struct WheelsetContactOptions {
     distance.validate();
     creep.validate();
     fastnorm::detail::check_positive(reference_approach, "WheelsetContactOptions: reference_approach (m)");
+    FASTNORM_CHECK(shared_table_box >= 0 && shared_table_box <= PatchGridOptions::max_elements,
+                   fastnorm::detail::describe("WheelsetContactOptions: shared_table_box must lie in [0, " +
+                                                  std::to_string(PatchGridOptions::max_elements) + "] (elements)",
+                                              shared_table_box));
     FASTNORM_CHECK((grid.element_length > 0) == (grid.element_width > 0),
                    "WheelsetContactOptions: give both grid.element_length and grid.element_width, or neither");
     if (reference_pose) check_pose(*reference_pose, "WheelsetContactOptions: reference_pose");
