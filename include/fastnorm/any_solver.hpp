@@ -129,6 +129,9 @@ class AnySolver : public detail::SolverBase<AnySolver<Scalar>, AnyWorkspace<Scal
     return AnySolver(spec_, material_, model_->for_grid(grid, spec_, material_));
   }
 
+  /// For a reduced kind, ReducedSolver::build_tables; else false (nothing to build).
+  bool build_tables() const { return model_->build_tables(); }
+
   /// The chosen solver's solve(h, loading, workspace).
   Solution<Scalar> solve(const Eigen::Ref<const Vector>& undeformed_distance, const Loading<Scalar>& loading,
                          Workspace& workspace) const {
@@ -151,6 +154,7 @@ class AnySolver : public detail::SolverBase<AnySolver<Scalar>, AnyWorkspace<Scal
     virtual std::unique_ptr<Model> clone() const = 0;
     virtual std::unique_ptr<Model> for_grid(const Grid<Scalar>& grid, const SolverSpec<Scalar>& spec,
                                             const Material<Scalar>& material) const = 0;
+    virtual bool build_tables() const = 0;
   };
 
   template <typename Solver>
@@ -167,10 +171,17 @@ class AnySolver : public detail::SolverBase<AnySolver<Scalar>, AnyWorkspace<Scal
     std::unique_ptr<Model> clone() const override { return std::make_unique<Holder>(solver); }
     std::unique_ptr<Model> for_grid(const Grid<Scalar>& grid, const SolverSpec<Scalar>& spec,
                                     const Material<Scalar>& material) const override {
-      if constexpr (detail::has_for_grid<Solver>) {
+      if constexpr (detail::shares_tables<Solver>) {
         return std::make_unique<Holder>(solver.for_grid(grid));
       } else {
         return std::make_unique<Holder>(SolverFromSpec<Solver>::make(spec, grid, material));
+      }
+    }
+    bool build_tables() const override {
+      if constexpr (detail::shares_tables<Solver>) {
+        return solver.build_tables();
+      } else {
+        return false;
       }
     }
     Solver solver;

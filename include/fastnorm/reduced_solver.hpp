@@ -125,6 +125,15 @@ class ReducedSolver : public detail::SolverBase<ReducedSolver<Basis, Scalar>, Re
     return detail::set_stiffness(set_solver, solution, workspace.loop_, grid().element_area());
   }
 
+  /// Builds now every segment table a solve on this solver's grid, or on any for_grid
+  /// shares them with, can read, if together they fit options().table_budget_bytes; else
+  /// nothing (each is built on first use). Returns whether it built them. What a time loop
+  /// does before its first step so that no step builds a table (docs/wheel-rail.md §9).
+  bool build_tables() const {
+    return tables_->build_all([this](Eigen::Index count) { return Galerkin::segment_block(basis_, count); },
+                              basis_.unknowns() + 1);
+  }
+
   /// Memory the segment tables take now (bytes); shared with copies of this solver and
   /// the solvers for_grid made from it that share its tables.
   std::size_t table_bytes() const { return tables_->used_bytes(); }
@@ -142,6 +151,8 @@ class ReducedSolver : public detail::SolverBase<ReducedSolver<Basis, Scalar>, Re
                   ? std::move(shared)
                   : std::make_shared<detail::SegmentTables<Scalar>>(influence_, options_.table_budget_bytes);
   }
+
+  using Galerkin = detail::GalerkinSetSolver<Basis, Scalar>;
 
   std::shared_ptr<const InfluenceTable<Scalar>> influence_;
   Material<Scalar> material_;

@@ -90,13 +90,16 @@ struct SolverFromSpec<ReducedSolver<Basis, Scalar>> {
 };
 
 namespace detail {
-/// Whether `Solver` has `for_grid(grid)`, a solver for another grid that shares what it can
-/// (ReducedSolver, AnySolver); a model builds its solvers per grid size through it.
+/// Whether `Solver` has tables that solvers of other grids can share: `for_grid(grid)`, a
+/// solver for another grid that shares them where they reach, and `build_tables()`, which
+/// builds them ahead (ReducedSolver, AnySolver). A model builds its solvers per grid size
+/// through them.
 template <typename Solver, typename = void>
-inline constexpr bool has_for_grid = false;
+inline constexpr bool shares_tables = false;
 template <typename Solver>
-inline constexpr bool has_for_grid<
-    Solver, std::void_t<decltype(std::declval<const Solver&>().for_grid(std::declval<const Solver&>().grid()))>> = true;
+inline constexpr bool shares_tables<
+    Solver, std::void_t<decltype(std::declval<const Solver&>().for_grid(std::declval<const Solver&>().grid())),
+                        decltype(std::declval<const Solver&>().build_tables())>> = true;
 }  // namespace detail
 
 /// Checks that a solver of type `Solver` can solve `spec` (its kind is the type's, its

@@ -170,6 +170,32 @@ TEST_CASE("Segment tables stay within their memory budget", "[reduced][correlati
   CHECK(none.used_bytes() == 0);
 }
 
+TEMPLATE_TEST_CASE("Tables built ahead are every table a solve reads, with the answers of tables built on use",
+                   "[reduced][correlation]", fastnorm::EllipticBasis, fastnorm::PolynomialEdgeBasis) {
+  const auto grid = fastnorm::test::two_bumps_grid();
+  const Eigen::VectorXd h = fastnorm::test::two_bumps(grid, 3e-5);
+  const fastnorm::ReducedSolver<TestType> largest(fastnorm::Grid<>(grid.mx() + 4, grid.my() + 4, grid.dx(), grid.dy()),
+                                                  steel);
+  REQUIRE(largest.build_tables());
+  const std::size_t built = largest.table_bytes();
+  CHECK(built > 0);
+  const auto ahead = largest.for_grid(grid);
+  const fastnorm::ReducedSolver<TestType> on_use(grid, steel);
+  for (const auto& loading : {fastnorm::Loading<>::approach(), fastnorm::Loading<>::force(2e3)}) {
+    const auto solution = ahead.solve(h, loading), reference = on_use.solve(h, loading);
+    REQUIRE(reference.ok());
+    CHECK((solution.pressure - reference.pressure).cwiseAbs().maxCoeff() == 0.0);
+  }
+  CHECK(largest.table_bytes() == built);  // the solves built nothing more
+  CHECK(on_use.table_bytes() > 0);
+
+  fastnorm::ReducedOptions<> small_budget;
+  small_budget.table_budget_bytes = built / 2;
+  const fastnorm::ReducedSolver<TestType> too_small(largest.grid(), steel, TestType(), small_budget);
+  CHECK_FALSE(too_small.build_tables());  // not all fit: none built ahead
+  CHECK(too_small.table_bytes() == 0);
+}
+
 TEMPLATE_TEST_CASE("Segment tables and direct products give the same solution",
                    "[reduced][correlation]", fastnorm::EllipticBasis, fastnorm::PolynomialBasis,
                    fastnorm::PolynomialEdgeBasis) {

@@ -353,6 +353,9 @@ void check_shared_tables(const char* name) {
   }
   CHECK(shared.solver_count() >= 3);
   CHECK(shared.solver_count() == own.solver_count());
+  // Built with the model when they fit the budget together (every reduced kind's do on a
+  // 32-element box; NORM has none).
+  CHECK(shared.tables_built() == fastnorm::SolverSpec<>::parse(name).is_reduced());
 }
 
 }  // namespace

@@ -49,6 +49,19 @@ struct ActiveSetWorkspace {
   /// the next solve starts them afresh.
   void forget_bounds() { checks = 0; }
 
+  /// Storage for the sets of a grid of `elements` elements, so that no set of it grows the
+  /// workspace (nothing once reserved): what a time loop's first steps would otherwise
+  /// allocate a little at a time. The sets of one solve together (visited_elements) are
+  /// reserved for two grids' worth and may still grow past it.
+  void reserve(std::size_t elements) {
+    for (auto* set : {&active, &kept, &candidates, &joining, &admissible_set, &checked_set}) set->reserve(elements);
+    admissible_pressure.reserve(elements);
+    checked_pressure.reserve(elements);
+    visited_elements.reserve(2 * elements);
+    columns.reserve(2 * elements);
+    displacement.reserve(elements);
+  }
+
   /// True if `set` came up before in this solve; records it otherwise.
   bool seen_before(const std::vector<Index>& set) {
     std::size_t begin = 0;
@@ -90,6 +103,7 @@ class ActiveSetLoop {
   /// Runs the loop from `start_set` (sorted element numbers), or from step 1's set if empty.
   Solution<Scalar> run(const std::vector<Index>& start_set) {
     const Index n_all = influence_.grid().size();
+    work_.reserve(static_cast<std::size_t>(n_all));
     solution_ = std::move(work_.spare_solution);
     solution_.clear(n_all);
     if (!choose_start(start_set)) return finish(Status::no_contact, "no element has a negative undeformed distance");

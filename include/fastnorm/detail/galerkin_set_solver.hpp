@@ -48,11 +48,30 @@ struct GalerkinMemory {
   };
   std::vector<SurvivorRun> survivor_runs;
   ScratchMatrix<Scalar> coupling, times_basis, block_entries, reduced_rhs, coefficients;
+  std::size_t reserved_segments = 0;  // what reserve() gives a new assembly's lists
+
+  /// Storage for sets of up to `segment_count` segments and solves of up to `set_count`
+  /// sets, so that the usual sets of a grid do not grow it a little at a time (nothing once
+  /// reserved). The Galerkin matrices and factors still grow to the largest system met.
+  void reserve(std::size_t segment_count, std::size_t set_count) {
+    for (auto* list : {&segments, &target_runs}) list->reserve(segment_count);
+    for (auto* list : {&old_index, &new_index}) list->reserve(segment_count);
+    direct.reserve(segment_count);
+    survivor_runs.reserve(segment_count);
+    for (auto* assemblies : {&path, &last_path, &spare}) assemblies->reserve(set_count);
+    reserved_segments = segment_count;
+  }
 
   /// An assembly to fill: the spare one with the most storage, so that storage grows only
   /// when more systems of the largest size are needed at once than ever before.
   Assembly take_spare() {
-    if (spare.empty()) return Assembly();
+    if (spare.empty()) {
+      Assembly fresh;
+      fresh.segments.reserve(reserved_segments);
+      fresh.order.reserve(reserved_segments);
+      fresh.offsets.reserve(reserved_segments);
+      return fresh;
+    }
     const auto largest = std::max_element(spare.begin(), spare.end(), [](const Assembly& a, const Assembly& b) {
       return a.matrix.capacity() < b.matrix.capacity();
     });
@@ -90,8 +109,16 @@ class GalerkinSetSolver {
                     SegmentTables<Scalar>& tables, Memory& memory)
       : influence_(influence), basis_(basis), tables_(tables), memory_(memory) {}
 
+  /// The block of `basis` for a segment of `count` elements: the basis's, or the identity
+  /// for a segment of no more elements than it has functions (is_identity).
+  static Matrix segment_block(const Basis& basis, Index count) {
+    return count <= basis.unknowns() ? Matrix(Matrix::Identity(count, count)) : basis.template block<Scalar>(count);
+  }
+
   /// The set solver of solve_active_set: right-hand sides over `active` in, pressures out.
   bool solve(const std::vector<Index>& active, Eigen::Ref<Matrix> columns) {
+    // Two segments a strip, and a solve's sets: an active-set loop's usual iterations.
+    memory_.reserve(2 * static_cast<std::size_t>(influence_.grid().my()), 16);
     segment_strips(influence_.grid(), active, memory_.segments);
     if (!memory_.path.empty() && memory_.path.back().segments == memory_.segments) {
       return solve_with(memory_.path.back(), columns);  // the set just solved, again (a stiffness)
@@ -127,7 +154,7 @@ class GalerkinSetSolver {
       const Segment& segment = assembly.segments[s];
       const auto rows = columns.middleRows(segment.set_position, segment.count);
       auto target = coefficients.middleRows(assembly.offsets[s], unknowns_of(segment.count));
-      if (is_identity(segment.count)) target = rows; else target.noalias() = basis_of(segment.count).transpose() * rows;
+      if (is_identity(segment.count)) target = rows; else target.noalias() = block_of(segment.count).transpose() * rows;
     }
     if (assembly.cholesky.factored()) {
       assembly.cholesky.solve_in_place(coefficients);
@@ -146,7 +173,7 @@ class GalerkinSetSolver {
       const Segment& segment = assembly.segments[s];
       const auto alpha = coefficients.middleRows(assembly.offsets[s], unknowns_of(segment.count));
       auto target = columns.middleRows(segment.set_position, segment.count);
-      if (is_identity(segment.count)) target = alpha; else target.noalias() = basis_of(segment.count) * alpha;
+      if (is_identity(segment.count)) target = alpha; else target.noalias() = block_of(segment.count) * alpha;
     }
     return true;
   }
@@ -166,11 +193,10 @@ class GalerkinSetSolver {
     const Index mx = influence_.grid().mx();
     segment_strips(influence_.grid(), targets, memory_.target_runs);
     result.setZero();
-    auto block_of_count = [this](Index count) { return block_of(count); };
     for (const Segment& source : assembly.segments) {
       const auto source_pressure = pressure.segment(source.set_position, source.count);
       const auto table = is_identity(source.count) ? DisplacementTable<Scalar>()
-                                                   : tables_.displacement(source.count, block_of_count, mx);
+                                                   : tables_.displacement(source.count, new_block(), mx);
       if (table) {
         auto alpha = memory_.coefficients.resize(basis_.unknowns(), 1);  // q ≤ n_s here
         alpha.noalias() = projection_of(source.count) * source_pressure;
@@ -196,16 +222,18 @@ class GalerkinSetSolver {
   bool is_identity(Index count) const { return count <= basis_.unknowns(); }
   Index unknowns_of(Index count) const { return is_identity(count) ? count : basis_.unknowns(); }
 
-  /// The basis block of a segment depends only on its element count: kept per count with
-  /// the segment tables, which every workspace and grid size of the solver share.
-  const Matrix& basis_of(Index count) {
-    return tables_.basis(count, [this](Index n) { return basis_.template block<Scalar>(n); });
-  }
+  /// The block of a segment of `count` elements, the basis's or the identity (is_identity):
+  /// it depends on the count only, so it is kept per count with the segment tables, which
+  /// every workspace and grid size of the solver share.
+  const Matrix& block_of(Index count) { return tables_.block(count, new_block()); }
 
-  /// The pseudo-inverse A⁺ of the basis block of `count` elements (kept as basis_of):
+  /// The pseudo-inverse A⁺ of the basis block of `count` elements (kept as block_of):
   /// α = A⁺ p for p = A α.
-  const Matrix& projection_of(Index count) {
-    return tables_.projection(count, [this](Index n) { return basis_.template block<Scalar>(n); });
+  const Matrix& projection_of(Index count) { return tables_.projection(count, new_block()); }
+
+  /// What makes a segment's block when the tables have none yet.
+  auto new_block() const {
+    return [this](Index count) { return segment_block(basis_, count); };
   }
 
   /// Position of `segment` in the assembly `previous`, or −1.
@@ -216,11 +244,6 @@ class GalerkinSetSolver {
       return a.strip < b.strip || (a.strip == b.strip && a.first < b.first);
     });
     return at != old.end() && *at == segment ? static_cast<Index>(at - old.begin()) : -1;
-  }
-
-  /// The block used for a segment of `count` elements: the basis, or the identity.
-  Matrix block_of(Index count) {
-    return is_identity(count) ? Matrix(Matrix::Identity(count, count)) : basis_of(count);
   }
 
   /// Orders the unknowns of `next` (its `order`, `offsets` and matrix size): first the
@@ -337,7 +360,6 @@ class GalerkinSetSolver {
   void assemble(Assembly& next, const Assembly* previous) {
     if (previous != nullptr) copy_survivors(next, *previous);
     const auto& old_index = memory_.old_index;
-    auto block_of_count = [this](Index count) { return block_of(count); };
     auto& direct = memory_.direct;
     for (std::size_t s = 0; s < next.segments.size(); ++s) {
       const Segment& source = next.segments[s];
@@ -348,7 +370,7 @@ class GalerkinSetSolver {
         if (old_index[s] >= 0 && old_index[t] >= 0) continue;  // both unchanged: copied
         const Segment& target = next.segments[t];
         const Index q_t = unknowns_of(target.count);
-        if (const Matrix* correlation = tables_.correlation(target.count, source.count, block_of_count)) {
+        if (const Matrix* correlation = tables_.correlation(target.count, source.count, new_block())) {
           // Σ_d c(Δ + d, dj) K(d), d = −(n_s − 1) … n_t − 1: K's column a + q_t·b is entry (a, b).
           // One dot product per entry rather than Kᵀ times the run: for runs of tens of
           // entries Eigen's matrix–vector product spends more on its set-up than on the sums
@@ -375,7 +397,7 @@ class GalerkinSetSolver {
       }
       const bool source_identity = is_identity(source.count);
       auto times_basis = memory_.times_basis.resize(rows, q_s);
-      if (!source_identity) times_basis.noalias() = coupling * basis_of(source.count);
+      if (!source_identity) times_basis.noalias() = coupling * block_of(source.count);
       const auto half = source_identity ? coupling : times_basis;
       row = 0;
       for (std::size_t t : direct) {
@@ -384,7 +406,7 @@ class GalerkinSetSolver {
           store_block(next, t, s, half.middleRows(row, target.count));
         } else {
           auto block = memory_.block_entries.resize(unknowns_of(target.count), q_s);
-          block.noalias() = basis_of(target.count).transpose() * half.middleRows(row, target.count);
+          block.noalias() = block_of(target.count).transpose() * half.middleRows(row, target.count);
           store_block(next, t, s, block);
         }
         row += target.count;

@@ -27,6 +27,10 @@ class ScratchMatrix {
   /// The view of the last resize.
   Eigen::Map<Matrix> view() { return Eigen::Map<Matrix>(values_.data(), rows_, cols_); }
   Eigen::Map<const Matrix> view() const { return Eigen::Map<const Matrix>(values_.data(), rows_, cols_); }
+  /// Storage for `values` values at least (it never shrinks).
+  void reserve(std::size_t values) {
+    if (values_.size() < values) values_.resize(values);
+  }
   /// Values the storage holds without growing.
   std::size_t capacity() const { return values_.size(); }
   Index rows() const { return rows_; }

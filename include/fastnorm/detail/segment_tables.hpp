@@ -109,11 +109,11 @@ class SegmentTables {
            grid.dy() == largest.dy() && influence.combined_modulus() == extent_->combined_modulus();
   }
 
-  /// The basis block of a segment of `count` elements, `block_of(count)` (n × q), built
-  /// once. Blocks and their pseudo-inverses are outside the budget: n·q values each, and
-  /// every solve needs them.
+  /// The block a solver uses for a segment of `count` elements, `block_of(count)` (n × q),
+  /// built once; every table is built from these. Blocks and their pseudo-inverses are
+  /// outside the budget: n·q values each, and every solve needs them.
   template <typename BlockOf>
-  const Matrix& basis(Index count, const BlockOf& block_of) {
+  const Matrix& block(Index count, const BlockOf& block_of) {
     FASTNORM_ASSERT(count >= 1 && count <= longest_);
     const auto slot = static_cast<std::size_t>((longest_ + 1) * (longest_ + 2) + count);
     if (const Matrix* block = published(slot)) return *block;
@@ -121,14 +121,14 @@ class SegmentTables {
     return *adopt(slot, block);
   }
 
-  /// The pseudo-inverse A⁺ (q × n) of basis(count): α = A⁺ p for p = A α; built once.
+  /// The pseudo-inverse A⁺ (q × n) of block(count): α = A⁺ p for p = A α; built once.
   template <typename BlockOf>
   const Matrix& projection(Index count, const BlockOf& block_of) {
     FASTNORM_ASSERT(count >= 1 && count <= longest_);
     const auto slot = static_cast<std::size_t>((longest_ + 1) * (longest_ + 3) + count);
     if (const Matrix* projection = published(slot)) return *projection;
     auto inverse = std::make_unique<Matrix>(
-        Eigen::CompleteOrthogonalDecomposition<Matrix>(basis(count, block_of)).pseudoInverse());
+        Eigen::CompleteOrthogonalDecomposition<Matrix>(block(count, block_of)).pseudoInverse());
     return *adopt(slot, inverse);
   }
 
@@ -143,7 +143,7 @@ class SegmentTables {
     const auto slot = static_cast<std::size_t>(target_count * (longest_ + 1) + source_count);
     if (const Matrix* table = published(slot)) return table;
     if (refused_[slot].load(std::memory_order_relaxed)) return nullptr;
-    const Matrix target = block_of(target_count), source = block_of(source_count);
+    const Matrix &target = block(target_count, block_of), &source = block(source_count, block_of);
     return publish(slot, (target_count + source_count - 1) * target.cols() * source.cols(),
                    [&]() { return correlate(target, source); });
   }
@@ -159,11 +159,38 @@ class SegmentTables {
     const Index rows = 2 * longest_ - count;
     if (const Matrix* table = published(slot)) return {table, rows, longest_ - mx};
     if (refused_[slot].load(std::memory_order_relaxed)) return {};
-    const Matrix block = block_of(count);
+    const Matrix& source = block(count, block_of);
     const Matrix* table =
-        publish(slot, rows * block.cols() * extent_->grid().my(), [&]() { return displace(block, *extent_); });
+        publish(slot, rows * source.cols() * extent_->grid().my(), [&]() { return displace(source, *extent_); });
     if (table == nullptr) return {};
     return {table, rows, longest_ - mx};
+  }
+
+  /// Builds every table a solver of a covered grid can read, now, if together they fit the
+  /// budget: W and the pseudo-inverse for each count from `first_displaced` (smaller
+  /// segments have none), K for each pair of counts. Returns whether it did; if not, it builds nothing and each table
+  /// is built when first needed (docs/wheel-rail.md §9).
+  template <typename BlockOf>
+  bool build_all(const BlockOf& block_of, Index first_displaced) {
+    std::size_t bytes = 0;
+    for (Index n = first_displaced; n <= longest_; ++n) {
+      bytes += sizeof(Scalar) * static_cast<std::size_t>((2 * longest_ - n) * block(n, block_of).cols() * extent_->grid().my());
+    }
+    for (Index target = 1; target <= longest_; ++target) {
+      for (Index source = 1; source <= longest_; ++source) {
+        bytes += sizeof(Scalar) * static_cast<std::size_t>((target + source - 1) * block(target, block_of).cols() *
+                                                           block(source, block_of).cols());
+      }
+    }
+    if (used_bytes_.load() + bytes > budget_bytes_) return false;
+    for (Index n = first_displaced; n <= longest_; ++n) {
+      projection(n, block_of);
+      displacement(n, block_of, longest_);
+    }
+    for (Index target = 1; target <= longest_; ++target) {
+      for (Index source = 1; source <= longest_; ++source) correlation(target, source, block_of);
+    }
+    return true;
   }
 
   /// Memory the tables take now (bytes).

@@ -47,13 +47,19 @@ class SolverCache {
   using Workspace = typename Solver::Workspace;
 
   /// Makes the solver on `largest` whose segment tables the solvers of every grid it covers
-  /// share (ReducedSolver::for_grid), if `spec` is of a reduced kind and `Solver` has
-  /// for_grid; else nothing (each solver keeps its own tables).
+  /// share (ReducedSolver::for_grid), and builds them all now if together they fit the
+  /// spec's budget (ReducedSolver::build_tables), if `spec` is of a reduced kind and
+  /// `Solver` shares tables; else nothing (each solver keeps its own tables).
   void share_tables(const Grid<double>& largest, const SolverSpec<double>& spec, const Material<double>& material) {
-    if constexpr (fastnorm::detail::has_for_grid<Solver>) {
-      if (spec.is_reduced()) family_.emplace(SolverFromSpec<Solver>::make(spec, largest, material));
+    if constexpr (fastnorm::detail::shares_tables<Solver>) {
+      if (!spec.is_reduced()) return;
+      family_.emplace(SolverFromSpec<Solver>::make(spec, largest, material));
+      tables_built_ = family_->build_tables();
     }
   }
+
+  /// Whether share_tables built every table ahead.
+  bool tables_built() const { return tables_built_; }
 
   /// The number of the solver of `grid`'s size, built from `spec` and `material` when it is
   /// met for the first time.
@@ -89,7 +95,7 @@ class SolverCache {
 
  private:
   Solver make(const Grid<double>& grid, const SolverSpec<double>& spec, const Material<double>& material) const {
-    if constexpr (fastnorm::detail::has_for_grid<Solver>) {
+    if constexpr (fastnorm::detail::shares_tables<Solver>) {
       if (family_) return family_->for_grid(grid);
     }
     return SolverFromSpec<Solver>::make(spec, grid, material);
@@ -101,6 +107,7 @@ class SolverCache {
   };
   std::vector<Slot> slots_;
   std::optional<Solver> family_;  // share_tables' solver on the largest box, never solving
+  bool tables_built_ = false;
 };
 
 /// Result storage that no result patch holds at the moment, by length: Eigen's vectors keep

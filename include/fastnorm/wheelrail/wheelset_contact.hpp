@@ -119,6 +119,11 @@ class WheelsetContact {
   /// options().table_box() elements.
   std::size_t solver_count() const { return solvers_.size(); }
 
+  /// Whether the model built every segment table of its reduced solvers when it was built
+  /// (they fit the spec's table budget together): then no step builds one
+  /// (docs/wheel-rail.md §9). False for the other kinds, which have none.
+  bool tables_built() const { return solvers_.tables_built(); }
+
   /// Contact of both wheels at `pose`, normal only; the result stays valid until the next
   /// call.
   /// @throws fastnorm::invalid_argument for a pose that is not finite or outside PoseLimits
