@@ -25,7 +25,8 @@ std::vector<Eigen::Index> run_of(const fastnorm::Grid<>& grid, Eigen::Index firs
 /// are made for a grid `extra` elements larger either way (read through an offset).
 template <typename Basis>
 struct TableCheck {
-  TableCheck(const Basis& b, Eigen::Index extra = 0) : basis(b), extent(grid.mx() + extra, grid.my() + extra, grid.dx(), grid.dy()) {}
+  TableCheck(const Basis& b, Eigen::Index extra = 0)
+      : basis(b), extent(grid.mx() + extra, grid.my() + extra, grid.dx(), grid.dy()) {}
   Basis basis;
   Eigen::Index q = basis.unknowns();
   fastnorm::Grid<> grid{23, 9, 3e-4, 4e-4};
@@ -104,8 +105,8 @@ TEST_CASE("Displacement tables give the displacement of a segment's basis functi
 
 TEST_CASE("Segment tables cover grids of their element sizes and E* up to their extent", "[reduced][correlation]") {
   const fastnorm::Grid<> extent(30, 20, 3e-4, 4e-4);
-  const fastnorm::detail::SegmentTables<double> tables(std::make_shared<const fastnorm::InfluenceTable<>>(extent, steel),
-                                                       std::size_t(1) << 20);
+  const fastnorm::detail::SegmentTables<double> tables(
+      std::make_shared<const fastnorm::InfluenceTable<>>(extent, steel), std::size_t(1) << 20);
   auto covers = [&](const fastnorm::Grid<>& grid, const fastnorm::Material<>& material) {
     return tables.covers(fastnorm::InfluenceTable<>(grid, material));
   };

@@ -360,7 +360,8 @@ void check_shared_tables(const char* name) {
 
 }  // namespace
 
-TEST_CASE("Solvers of all box sizes share the segment tables, with the answers of tables per box", "[wheelrail][model]") {
+TEST_CASE("Solvers of all box sizes share the segment tables, with the answers of tables per box",
+          "[wheelrail][model]") {
   check_shared_tables<fastnorm::ReducedSolver<fastnorm::EllipticBasis>>("elliptic");
   check_shared_tables<fastnorm::ReducedSolver<fastnorm::PolynomialEdgeBasis>>("polynomial-edge:4:1");
   check_shared_tables<fastnorm::AnySolver<>>("polynomial:4");

@@ -62,8 +62,8 @@ class DisplacementTable {
   explicit operator bool() const { return values_ != nullptr; }
 
   /// u(k) += Σ_b α_b W_b(d, dj) at the rows r = d + mx − n = row + k, k < u.size()
-  /// (d = i_t − i_s, mx the solver's grid's), b in order (so the sums are those of adding the functions one after
-  /// the other). Written out: the join check's runs are a few elements long, and building
+  /// (d = i_t − i_s, mx the solver's grid's), b in order (so the sums are those of adding
+  /// the functions one after the other). Written out: the join check's runs are a few elements long, and building
   /// Eigen's block expressions of a slice of this layout for each run and function cost
   /// more than the arithmetic (measured: a warm elliptic solve 40 % slower).
   template <typename Coefficients, typename Displacement>
@@ -116,9 +116,9 @@ class SegmentTables {
   const Matrix& block(Index count, const BlockOf& block_of) {
     FASTNORM_ASSERT(count >= 1 && count <= longest_);
     const auto slot = static_cast<std::size_t>((longest_ + 1) * (longest_ + 2) + count);
-    if (const Matrix* block = published(slot)) return *block;
-    auto block = std::make_unique<Matrix>(block_of(count));
-    return *adopt(slot, block);
+    if (const Matrix* built = published(slot)) return *built;
+    auto made = std::make_unique<Matrix>(block_of(count));
+    return *adopt(slot, made);
   }
 
   /// The pseudo-inverse A⁺ (q × n) of block(count): α = A⁺ p for p = A α; built once.
@@ -126,7 +126,7 @@ class SegmentTables {
   const Matrix& projection(Index count, const BlockOf& block_of) {
     FASTNORM_ASSERT(count >= 1 && count <= longest_);
     const auto slot = static_cast<std::size_t>((longest_ + 1) * (longest_ + 3) + count);
-    if (const Matrix* projection = published(slot)) return *projection;
+    if (const Matrix* built = published(slot)) return *built;
     auto inverse = std::make_unique<Matrix>(
         Eigen::CompleteOrthogonalDecomposition<Matrix>(block(count, block_of)).pseudoInverse());
     return *adopt(slot, inverse);
@@ -168,20 +168,22 @@ class SegmentTables {
 
   /// Builds every table a solver of a covered grid can read, now, if together they fit the
   /// budget: W and the pseudo-inverse for each count from `first_displaced` (smaller
-  /// segments have none), K for each pair of counts. Returns whether it did; if not, it builds nothing and each table
-  /// is built when first needed (docs/wheel-rail.md §9).
+  /// segments have none), K for each pair of counts. Returns whether it did; if not, it
+  /// builds nothing but the blocks, and each table is built when first needed
+  /// (docs/wheel-rail.md §9).
   template <typename BlockOf>
   bool build_all(const BlockOf& block_of, Index first_displaced) {
-    std::size_t bytes = 0;
+    auto functions = [&](Index count) { return block(count, block_of).cols(); };
+    Index entries = 0;
     for (Index n = first_displaced; n <= longest_; ++n) {
-      bytes += sizeof(Scalar) * static_cast<std::size_t>((2 * longest_ - n) * block(n, block_of).cols() * extent_->grid().my());
+      entries += (2 * longest_ - n) * functions(n) * extent_->grid().my();
     }
     for (Index target = 1; target <= longest_; ++target) {
       for (Index source = 1; source <= longest_; ++source) {
-        bytes += sizeof(Scalar) * static_cast<std::size_t>((target + source - 1) * block(target, block_of).cols() *
-                                                           block(source, block_of).cols());
+        entries += (target + source - 1) * functions(target) * functions(source);
       }
     }
+    const std::size_t bytes = sizeof(Scalar) * static_cast<std::size_t>(entries);
     if (used_bytes_.load() + bytes > budget_bytes_) return false;
     for (Index n = first_displaced; n <= longest_; ++n) {
       projection(n, block_of);
