@@ -105,7 +105,7 @@ class NormSolver : public detail::SolverBase<NormSolver<Scalar>, NormWorkspace<S
     if (workspace.factorisation_.solver != id_) {
       workspace.factorisation_.valid = false;
       workspace.factorisation_.solver = id_;
-      workspace.loop_.forget_bounds();
+      workspace.loop_.start_on_grid(static_cast<std::size_t>(grid().size()));
     }
     DenseSetSolver set_solver{*influence_, workspace.factorisation_};
     const Options options = workspace.start_.limited(options_);

@@ -105,7 +105,9 @@ class ReducedSolver : public detail::SolverBase<ReducedSolver<Basis, Scalar>, Re
     workspace.start_.check(grid().size());
     if (workspace.owner_ != id_) {  // blocks and assemblies of another basis or grid
       workspace.memory_ = detail::GalerkinMemory<Scalar>();
-      workspace.loop_.forget_bounds();
+      // Two segments a strip, and 16 sets a solve: an active-set loop's usual iterations.
+      workspace.memory_.reserve(2 * static_cast<std::size_t>(grid().my()), 16);
+      workspace.loop_.start_on_grid(static_cast<std::size_t>(grid().size()));
       workspace.owner_ = id_;
     }
     workspace.memory_.next_problem();

@@ -45,15 +45,13 @@ struct ActiveSetWorkspace {
   std::vector<Index> checked_set;
   int checks = 0;  // since the floors were last started afresh; 0: none to carry
 
-  /// The floors belong to another influence table (a workspace moved to another solver):
-  /// the next solve starts them afresh.
-  void forget_bounds() { checks = 0; }
-
-  /// Storage for the sets of a grid of `elements` elements, so that no set of it grows the
-  /// workspace (nothing once reserved): what a time loop's first steps would otherwise
-  /// allocate a little at a time. The sets of one solve together (visited_elements) are
-  /// reserved for two grids' worth and may still grow past it.
-  void reserve(std::size_t elements) {
+  /// The workspace moved to another solver, of a grid of `elements` elements: the floors
+  /// belong to another influence table, so the next solve starts them afresh; and the lists
+  /// get storage for that grid's sets, so that no set of it grows them (what a time loop's
+  /// first steps would otherwise allocate a little at a time). The sets of one solve
+  /// together (visited_elements) get two grids' worth and may still grow past it.
+  void start_on_grid(std::size_t elements) {
+    checks = 0;
     for (auto* set : {&active, &kept, &candidates, &joining, &admissible_set, &checked_set}) set->reserve(elements);
     admissible_pressure.reserve(elements);
     checked_pressure.reserve(elements);
@@ -103,7 +101,6 @@ class ActiveSetLoop {
   /// Runs the loop from `start_set` (sorted element numbers), or from step 1's set if empty.
   Solution<Scalar> run(const std::vector<Index>& start_set) {
     const Index n_all = influence_.grid().size();
-    work_.reserve(static_cast<std::size_t>(n_all));
     solution_ = std::move(work_.spare_solution);
     solution_.clear(n_all);
     if (!choose_start(start_set)) return finish(Status::no_contact, "no element has a negative undeformed distance");

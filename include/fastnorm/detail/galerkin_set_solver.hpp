@@ -48,7 +48,6 @@ struct GalerkinMemory {
   };
   std::vector<SurvivorRun> survivor_runs;
   ScratchMatrix<Scalar> coupling, times_basis, block_entries, reduced_rhs, coefficients;
-  std::size_t reserved_segments = 0;  // what reserve() gives a new assembly's lists
 
   /// Storage for sets of up to `segment_count` segments and solves of up to `set_count`
   /// sets, so that the usual sets of a grid do not grow it a little at a time (nothing once
@@ -59,17 +58,16 @@ struct GalerkinMemory {
     direct.reserve(segment_count);
     survivor_runs.reserve(segment_count);
     for (auto* assemblies : {&path, &last_path, &spare}) assemblies->reserve(set_count);
-    reserved_segments = segment_count;
   }
 
   /// An assembly to fill: the spare one with the most storage, so that storage grows only
-  /// when more systems of the largest size are needed at once than ever before.
+  /// when more systems of the largest size are needed at once than ever before; a new one
+  /// has lists for as many segments as the set's.
   Assembly take_spare() {
     if (spare.empty()) {
       Assembly fresh;
-      fresh.segments.reserve(reserved_segments);
-      fresh.order.reserve(reserved_segments);
-      fresh.offsets.reserve(reserved_segments);
+      for (auto* list : {&fresh.order, &fresh.offsets}) list->reserve(segments.capacity());
+      fresh.segments.reserve(segments.capacity());
       return fresh;
     }
     const auto largest = std::max_element(spare.begin(), spare.end(), [](const Assembly& a, const Assembly& b) {
@@ -117,8 +115,6 @@ class GalerkinSetSolver {
 
   /// The set solver of solve_active_set: right-hand sides over `active` in, pressures out.
   bool solve(const std::vector<Index>& active, Eigen::Ref<Matrix> columns) {
-    // Two segments a strip, and a solve's sets: an active-set loop's usual iterations.
-    memory_.reserve(2 * static_cast<std::size_t>(influence_.grid().my()), 16);
     segment_strips(influence_.grid(), active, memory_.segments);
     if (!memory_.path.empty() && memory_.path.back().segments == memory_.segments) {
       return solve_with(memory_.path.back(), columns);  // the set just solved, again (a stiffness)
