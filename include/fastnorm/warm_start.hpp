@@ -58,6 +58,10 @@ class WarmStart {
     return options;
   }
 
+  /// Storage for a contact set of up to `elements` elements (a grid's size), so that
+  /// setting or remembering one never allocates.
+  void reserve(std::size_t elements) { contact_set_.reserve(elements); }
+
   /// Nothing to start from: the next solve is cold. Keeps the storage.
   void clear() {
     contact_set_.clear();

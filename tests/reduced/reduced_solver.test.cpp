@@ -1,6 +1,8 @@
 #include <catch2/catch.hpp>
 #include <fastnorm/any_solver.hpp>
+#include <fastnorm/detail/galerkin_set_solver.hpp>
 #include <fastnorm/detail/in_place_cholesky.hpp>
+#include <fastnorm/detail/scratch_matrix.hpp>
 #include <fastnorm/hertz.hpp>
 #include <fastnorm/norm_solver.hpp>
 #include <fastnorm/reduced_solver.hpp>
@@ -102,6 +104,41 @@ TEST_CASE("A factorisation continued from a kept leading factor is the factorisa
   cholesky.matrix().topLeftCorner(7, 7) = reference.topLeftCorner(7, 7);
   CHECK_FALSE(cholesky.factorise_from(7));
   CHECK_FALSE(cholesky.factored());
+}
+
+TEST_CASE("Workspace matrices grow geometrically and new assemblies start at the largest size", "[reduced]") {
+  // The systems of a time loop creep up one segment at a time: storage that grew to each
+  // exact size would reallocate at every segment (docs/performance.md §8, "Allocations").
+  fastnorm::detail::ScratchMatrix<double> scratch;
+  int growths = 0;
+  std::size_t capacity = 0;
+  for (Eigen::Index n = 1; n <= 200; ++n) {
+    scratch.resize(n, n).setConstant(1.0);
+    CHECK(scratch.capacity() >= static_cast<std::size_t>(n * n));
+    if (scratch.capacity() != capacity) ++growths, capacity = scratch.capacity();
+  }
+  CHECK(growths <= 25);  // 200 when grown to each size
+  const std::size_t before = scratch.capacity();
+  scratch.resize(3, 3);
+  CHECK(scratch.capacity() == before);  // never shrinks
+
+  // An assembly made when no spare is left gets matrices as large as the largest one
+  // recycled, so a workspace does not climb the sizes again for each new assembly.
+  fastnorm::detail::GalerkinMemory<double> memory;
+  memory.reserve(8, 4);
+  auto first = memory.take_spare();
+  CHECK(first.matrix.capacity() == 0);
+  first.matrix.resize(40, 40);
+  first.cholesky.resize(40);
+  memory.path.push_back(std::move(first));
+  memory.next_problem();  // this solve's sets become the ones to look up
+  memory.next_problem();  // and then spares
+  REQUIRE(memory.spare.size() == 1);
+  auto reused = memory.take_spare(), fresh = memory.take_spare();
+  CHECK(reused.matrix.capacity() >= 1600);
+  CHECK(fresh.matrix.capacity() >= 1600);
+  CHECK(fresh.cholesky.capacity() >= 1600);
+  CHECK(fresh.segments.capacity() >= 8);
 }
 
 TEST_CASE("Reduced solvers against full NORM on Hertz contacts", "[reduced][hertz]") {

@@ -56,6 +56,7 @@ struct ActiveSetWorkspace {
     admissible_pressure.reserve(elements);
     checked_pressure.reserve(elements);
     visited_elements.reserve(2 * elements);
+    visited_ends.reserve(32);  // sets of a solve: a loop's usual iterations, with room
     columns.reserve(2 * elements);
     displacement.reserve(elements);
   }

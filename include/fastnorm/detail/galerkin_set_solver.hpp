@@ -48,6 +48,7 @@ struct GalerkinMemory {
   };
   std::vector<SurvivorRun> survivor_runs;
   ScratchMatrix<Scalar> coupling, times_basis, block_entries, reduced_rhs, coefficients;
+  std::size_t system_capacity = 0;  // values of the largest matrix an assembly has grown to
 
   /// Storage for sets of up to `segment_count` segments and solves of up to `set_count`
   /// sets, so that the usual sets of a grid do not grow it a little at a time (nothing once
@@ -62,12 +63,15 @@ struct GalerkinMemory {
 
   /// An assembly to fill: the spare one with the most storage, so that storage grows only
   /// when more systems of the largest size are needed at once than ever before; a new one
-  /// has lists for as many segments as the set's.
+  /// has lists for as many segments as the set's, and matrices as large as the largest any
+  /// assembly has grown to (`system_capacity`).
   Assembly take_spare() {
     if (spare.empty()) {
       Assembly fresh;
       for (auto* list : {&fresh.order, &fresh.offsets}) list->reserve(segments.capacity());
       fresh.segments.reserve(segments.capacity());
+      fresh.matrix.reserve(system_capacity);
+      fresh.cholesky.reserve(system_capacity);
       return fresh;
     }
     const auto largest = std::max_element(spare.begin(), spare.end(), [](const Assembly& a, const Assembly& b) {
@@ -79,7 +83,10 @@ struct GalerkinMemory {
     return assembly;
   }
   void recycle(std::vector<Assembly>& assemblies) {
-    for (Assembly& assembly : assemblies) spare.push_back(std::move(assembly));
+    for (Assembly& assembly : assemblies) {
+      system_capacity = std::max({system_capacity, assembly.matrix.capacity(), assembly.cholesky.capacity()});
+      spare.push_back(std::move(assembly));
+    }
     assemblies.clear();
   }
   /// Before a solve: the previous solve's sets become the ones to look up.

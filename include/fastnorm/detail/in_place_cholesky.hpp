@@ -26,6 +26,12 @@ class InPlaceCholesky {
     storage_.resize(n, n);
   }
 
+  /// Storage for `values` values (an n × n factor needs n·n) without growing; it never
+  /// shrinks.
+  void reserve(std::size_t values) { storage_.reserve(values); }
+  /// Values the storage holds without growing.
+  std::size_t capacity() const { return storage_.capacity(); }
+
   /// The matrix to factorise (lower triangle), and after factorise() its factor L.
   Eigen::Map<Matrix> matrix() { return storage_.view(); }
 

@@ -369,6 +369,7 @@ class WheelsetContact {
     } else {
       state.workspace = solvers_.take_workspace(state.solver);
     }
+    state.workspace.start().reserve(static_cast<std::size_t>(state.grid.size()));
     if (!options_.starts_warm() || predecessors.empty()) {
       state.workspace.start().clear();
       return;
