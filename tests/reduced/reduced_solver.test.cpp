@@ -2,7 +2,6 @@
 #include <fastnorm/any_solver.hpp>
 #include <fastnorm/detail/galerkin_set_solver.hpp>
 #include <fastnorm/detail/in_place_cholesky.hpp>
-#include <fastnorm/detail/scratch_matrix.hpp>
 #include <fastnorm/hertz.hpp>
 #include <fastnorm/norm_solver.hpp>
 #include <fastnorm/reduced_solver.hpp>
@@ -106,24 +105,9 @@ TEST_CASE("A factorisation continued from a kept leading factor is the factorisa
   CHECK_FALSE(cholesky.factored());
 }
 
-TEST_CASE("Workspace matrices grow geometrically and new assemblies start at the largest size", "[reduced]") {
-  // The systems of a time loop creep up one segment at a time: storage that grew to each
-  // exact size would reallocate at every segment (docs/performance.md §8, "Allocations").
-  fastnorm::detail::ScratchMatrix<double> scratch;
-  int growths = 0;
-  std::size_t capacity = 0;
-  for (Eigen::Index n = 1; n <= 200; ++n) {
-    scratch.resize(n, n).setConstant(1.0);
-    CHECK(scratch.capacity() >= static_cast<std::size_t>(n * n));
-    if (scratch.capacity() != capacity) ++growths, capacity = scratch.capacity();
-  }
-  CHECK(growths <= 25);  // 200 when grown to each size
-  const std::size_t before = scratch.capacity();
-  scratch.resize(3, 3);
-  CHECK(scratch.capacity() == before);  // never shrinks
-
-  // An assembly made when no spare is left gets matrices as large as the largest one
-  // recycled, so a workspace does not climb the sizes again for each new assembly.
+TEST_CASE("A new Galerkin assembly starts at the largest size recycled", "[reduced]") {
+  // The systems of a time loop creep up one segment at a time: an assembly made from nothing
+  // when no spare is left would climb the sizes again (docs/performance.md §8).
   fastnorm::detail::GalerkinMemory<double> memory;
   memory.reserve(8, 4);
   auto first = memory.take_spare();

@@ -6,7 +6,6 @@
 /// has met its largest system (docs/performance.md §3).
 
 #include <Eigen/Core>
-#include <algorithm>
 #include <vector>
 
 namespace fastnorm {
@@ -18,14 +17,11 @@ class ScratchMatrix {
   using Index = Eigen::Index;
   using Matrix = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;
 
-  /// A rows × cols view of the storage, grown if needed; contents undefined. Storage grows
-  /// by half its size at least, as std::vector's, so that systems creeping up in size one
-  /// segment at a time reallocate a few times, not at every segment.
+  /// A rows × cols view of the storage, grown if needed; contents undefined.
   Eigen::Map<Matrix> resize(Index rows, Index cols) {
     rows_ = rows;
     cols_ = cols;
-    const auto needed = static_cast<std::size_t>(rows * cols);
-    if (values_.size() < needed) values_.resize(std::max(needed, values_.size() + values_.size() / 2));
+    if (values_.size() < static_cast<std::size_t>(rows * cols)) values_.resize(static_cast<std::size_t>(rows * cols));
     return view();
   }
   /// The view of the last resize.
