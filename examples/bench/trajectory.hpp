@@ -6,7 +6,7 @@
 //
 //   trajectory solver=<name> steps=<n> search_us=<t> h_us=<t> solve_us=<t> tangential_us=<t>
 //     total_us=<t> total_p99_us=<t> max_err_vs_norm=<x> max_set_diff=<n> roughness=<x>
-//     roughness_norm=<x> allocations_per_step=<x> iterations_per_patch=<x>
+//     roughness_norm=<x> allocations_per_step=<x> allocating_steps=<n> iterations_per_patch=<x>
 //
 // The wheelset moves forwards at 30 m/s, rolling (pitch rate −V/r0), with the pose's rates
 // by central differences: each step also gives every patch's creep forces (strip theory,
@@ -41,7 +41,8 @@
 // differences against NORM on the same h at every 20th step (NORM runs first, on the same
 // grids: the grids depend on the geometry only); roughness = the largest
 // |Fn(t+1) − 2Fn(t) + Fn(t−1)| / Fn(t) of a wheel's total normal force; allocations per
-// step inside evaluate, after the first ten (-1: not counted in this build).
+// step inside evaluate, after the first ten, and the number of those steps that allocated
+// at all (-1: not counted in this build).
 #pragma once
 
 #include <fastnorm/fastnorm.hpp>
@@ -102,6 +103,7 @@ struct TrajectoryRun {
   std::vector<std::array<double, 2>> wheel_force;       // Σ Fn per wheel, per step
   std::vector<std::vector<fastnorm::Solution<double>>> checked;  // every 20th step: the patches' solutions
   double allocations_per_step = -1;
+  long allocating_steps = -1;  // steps after the first ten with any allocation inside evaluate
   double iterations_per_patch = 0;  // mean active-set or CG iterations of a patch solve
 };
 
@@ -149,11 +151,16 @@ inline TrajectoryRun run_trajectory(const wr::Track& track, const wr::Wheelset& 
   const auto velocities = trajectory_velocities(wheelset, poses);
   TrajectoryRun run;
   long iterations = 0, solves = 0;
-  long model_allocations = 0;  // inside evaluate only: the run's own records allocate too
+  // Inside evaluate only: the run's own records allocate too.
+  long model_allocations = 0, allocating_steps = 0;
   for (std::size_t step = 0; step < poses.size(); ++step) {
     const long allocations_before = fastnorm_example::allocation_count();
     const auto& result = contact.evaluate(poses[step], velocities[step]);
-    if (step >= 10) model_allocations += fastnorm_example::allocation_count() - allocations_before;
+    if (step >= 10) {
+      const long allocations = fastnorm_example::allocation_count() - allocations_before;
+      model_allocations += allocations;
+      allocating_steps += allocations > 0 ? 1 : 0;
+    }
     std::array<double, 2> force{};
     for (std::size_t w = 0; w < 2; ++w) {
       const auto& wheel = result.wheels[w];
@@ -177,6 +184,7 @@ inline TrajectoryRun run_trajectory(const wr::Track& track, const wr::Wheelset& 
   run.iterations_per_patch = solves > 0 ? static_cast<double>(iterations) / static_cast<double>(solves) : 0.0;
   if (poses.size() > 10 && fastnorm_example::allocation_count() >= 0) {
     run.allocations_per_step = static_cast<double>(model_allocations) / static_cast<double>(poses.size() - 10);
+    run.allocating_steps = allocating_steps;
   }
   return run;
 }
@@ -321,12 +329,12 @@ inline void bench_trajectory(const std::vector<std::string>& solvers, int steps)
     std::printf("trajectory solver=%s steps=%d search_us=%.1f h_us=%.1f solve_us=%.1f tangential_us=%.1f total_us=%.1f "
                 "total_p99_us=%.1f "
                 "max_err_vs_norm=%.3e max_set_diff=%ld roughness=%.3e roughness_norm=%.3e allocations_per_step=%.2f "
-                "iterations_per_patch=%.2f\n",
+                "allocating_steps=%ld iterations_per_patch=%.2f\n",
                 label.c_str(), steps, 1e6 * quantile(run.search, 0.5),
                 1e6 * quantile(run.distance, 0.5), 1e6 * quantile(run.solve, 0.5), 1e6 * quantile(run.tangential, 0.5),
                 1e6 * quantile(run.total, 0.5),
                 1e6 * quantile(run.total, 0.99), largest(to_norm.error), max_set_diff, roughness(run), roughness(norm),
-                run.allocations_per_step, run.iterations_per_patch);
+                run.allocations_per_step, run.allocating_steps, run.iterations_per_patch);
     std::fflush(stdout);
     runs.push_back({solver, std::move(run)});
   }
