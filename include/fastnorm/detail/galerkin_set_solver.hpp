@@ -48,7 +48,7 @@ struct GalerkinMemory {
   };
   std::vector<SurvivorRun> survivor_runs;
   ScratchMatrix<Scalar> coupling, times_basis, block_entries, reduced_rhs, coefficients;
-  std::size_t system_capacity = 0;  // values of the largest matrix an assembly has grown to
+  std::size_t system_capacity = 0;  // values of the largest matrix or factor recycled
 
   /// Storage for sets of up to `segment_count` segments and solves of up to `set_count`
   /// sets, so that the usual sets of a grid do not grow it a little at a time (nothing once
@@ -63,8 +63,8 @@ struct GalerkinMemory {
 
   /// An assembly to fill: the spare one with the most storage, so that storage grows only
   /// when more systems of the largest size are needed at once than ever before; a new one
-  /// has lists for as many segments as the set's, and matrices as large as the largest any
-  /// assembly has grown to (`system_capacity`).
+  /// has lists for as many segments as the set's, and matrices as large as the largest
+  /// recycled (`system_capacity`).
   Assembly take_spare() {
     if (spare.empty()) {
       Assembly fresh;

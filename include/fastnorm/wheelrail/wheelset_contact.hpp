@@ -368,8 +368,9 @@ class WheelsetContact {
       previous[predecessors.front()].solver = detail::no_solver;  // its workspace moved on
     } else {
       state.workspace = solvers_.take_workspace(state.solver);
+      // A new workspace's start gets room for its grid's sets (a spare has it already).
+      state.workspace.start().reserve(static_cast<std::size_t>(state.grid.size()));
     }
-    state.workspace.start().reserve(static_cast<std::size_t>(state.grid.size()));
     if (!options_.starts_warm() || predecessors.empty()) {
       state.workspace.start().clear();
       return;
