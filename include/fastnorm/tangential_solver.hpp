@@ -8,6 +8,7 @@
 #include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
+#include <complex>
 #include <limits>
 #include <memory>
 #include <string>
@@ -16,6 +17,7 @@
 #include "fastnorm/detail/anderson_mixing.hpp"
 #include "fastnorm/detail/memory_check.hpp"
 #include "fastnorm/error.hpp"
+#include "fastnorm/fft_convolution.hpp"
 #include "fastnorm/grid.hpp"
 #include "fastnorm/material.hpp"
 #include "fastnorm/solution.hpp"
@@ -89,11 +91,121 @@ struct RollingOperator {
   }
 };
 
+/// D p along the rows of a contact's bounding box by one-dimensional FFTs
+/// (docs/tangential.md §7). For each offset dj between a target row and a source row, the
+/// part of D p that a row's tractions give another row is a Toeplitz product along x with
+/// D(·, dj); zero-padded to N ≥ 2L − 1 (L the box's width), it is a circular convolution,
+/// diagonal in the row's half spectrum. The sweeps keep every contact row's D p as that
+/// spectrum, add a finished row's change to every row there (32 operations a frequency and
+/// row pair, where the direct update costs 6·L a source element and row pair), and
+/// transform a row back when the sweep reaches it.
+///
+/// Spectra are stored as real and imaginary parts apart (the products then need no
+/// shuffling of complex pairs, and the sweeps' Anderson mixing sees real numbers): a row's
+/// is 4F values, F = N/2 + 1 frequencies, [Re x, Im x, Re y, Im y] of its D p's two
+/// components or of a change's two traction components.
+template <typename Scalar>
+class RowSpectra {
+ public:
+  using Index = Eigen::Index;
+  using Matrix = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;
+  using Vector = Eigen::Matrix<Scalar, Eigen::Dynamic, 1>;
+
+  /// The box: `columns` grid columns from `first_column`, `rows` grid rows.
+  RowSpectra(const RollingOperator<Scalar>& rolling, Index first_column, Index columns, Index rows)
+      : first_column_(first_column),
+        columns_(columns),
+        rows_(rows),
+        length_(smooth_fft_length(2 * columns, 4)),  // ≥ 2L − 1, a multiple of 4 (kissfft's fast real path)
+        frequencies_(length_ / 2 + 1),
+        fft_(typename Eigen::FFT<Scalar>::impl_type(),
+             static_cast<typename Eigen::FFT<Scalar>::Flag>(Eigen::FFT<Scalar>::Unscaled |
+                                                           Eigen::FFT<Scalar>::HalfSpectrum)),
+        kernels_(6 * frequencies_, 2 * rows - 1),
+        line_(length_),
+        spectrum_(static_cast<std::size_t>(frequencies_)) {
+    // Kernel of offset dj: D(di, dj) at di mod N for |di| < L, the inverse transform's 1/N folded in.
+    const Scalar scale = Scalar(1) / static_cast<Scalar>(length_);
+    const typename RollingOperator<Scalar>::Matrix* tables[3] = {&rolling.one_xx, &rolling.one_xy, &rolling.one_yy};
+    for (Index dj = -(rows - 1); dj < rows; ++dj) {
+      for (Index table = 0; table < 3; ++table) {
+        line_.setZero();
+        for (Index di = -(columns - 1); di < columns; ++di) {
+          line_(di >= 0 ? di : length_ + di) = scale * (*tables[table])(rolling.mx + di, rolling.my - 1 + dj);
+        }
+        fft_.fwd(spectrum_.data(), line_.data(), length_);
+        split(kernels_.col(rows - 1 + dj).segment(2 * table * frequencies_, 2 * frequencies_));
+      }
+    }
+  }
+
+  /// The values a row's spectrum holds (4F).
+  Index spectrum_size() const { return 4 * frequencies_; }
+
+  /// The spectra [Re x, Im x, Re y, Im y] of a row's two components on the box's columns
+  /// (`x` and `y` point at the row's column 0).
+  void forward(const Scalar* x, const Scalar* y, Eigen::Ref<Vector> spectra) {
+    for (Index component = 0; component < 2; ++component) {
+      line_.head(columns_) = Eigen::Map<const Vector>((component == 0 ? x : y) + first_column_, columns_);
+      line_.tail(length_ - columns_).setZero();
+      fft_.fwd(spectrum_.data(), line_.data(), length_);
+      split(spectra.segment(2 * component * frequencies_, 2 * frequencies_));
+    }
+  }
+
+  /// A row's two components on the box's columns from their spectra (`x` and `y` point at
+  /// the row's column 0).
+  void inverse(const Eigen::Ref<const Vector>& spectra, Scalar* x, Scalar* y) {
+    for (Index component = 0; component < 2; ++component) {
+      const Index at = 2 * component * frequencies_;
+      for (Index f = 0; f < frequencies_; ++f) {
+        spectrum_[static_cast<std::size_t>(f)] = {spectra(at + f), spectra(at + frequencies_ + f)};
+      }
+      fft_.inv(line_.data(), spectrum_.data(), length_);
+      Eigen::Map<Vector>((component == 0 ? x : y) + first_column_, columns_) = line_.head(columns_);
+    }
+  }
+
+  /// Adds to `target_spectra` (of box row `target`) what a change of box row `source`,
+  /// with spectra `change`, gives it.
+  void add(Index target, Index source, const Vector& change, Eigen::Ref<Vector> target_spectra) const {
+    const Index f = frequencies_;
+    const auto kernel = kernels_.col(rows_ - 1 + target - source);
+    const auto xx_re = kernel.segment(0, f).array(), xx_im = kernel.segment(f, f).array();
+    const auto xy_re = kernel.segment(2 * f, f).array(), xy_im = kernel.segment(3 * f, f).array();
+    const auto yy_re = kernel.segment(4 * f, f).array(), yy_im = kernel.segment(5 * f, f).array();
+    const auto x_re = change.segment(0, f).array(), x_im = change.segment(f, f).array();
+    const auto y_re = change.segment(2 * f, f).array(), y_im = change.segment(3 * f, f).array();
+    target_spectra.segment(0, f).array() += xx_re * x_re - xx_im * x_im + xy_re * y_re - xy_im * y_im;
+    target_spectra.segment(f, f).array() += xx_re * x_im + xx_im * x_re + xy_re * y_im + xy_im * y_re;
+    target_spectra.segment(2 * f, f).array() += xy_re * x_re - xy_im * x_im + yy_re * y_re - yy_im * y_im;
+    target_spectra.segment(3 * f, f).array() += xy_re * x_im + xy_im * x_re + yy_re * y_im + yy_im * y_re;
+  }
+
+ private:
+  /// spectrum_ into [Re, Im] (2F values).
+  template <typename Parts>
+  void split(Parts&& parts) const {
+    for (Index f = 0; f < frequencies_; ++f) {
+      parts(f) = spectrum_[static_cast<std::size_t>(f)].real();
+      parts(frequencies_ + f) = spectrum_[static_cast<std::size_t>(f)].imag();
+    }
+  }
+
+  Index first_column_, columns_, rows_, length_, frequencies_;
+  Eigen::FFT<Scalar> fft_;
+  Matrix kernels_;  // 6F × (2 rows − 1): column rows − 1 + dj holds [xx, xy, yy] of D(·, dj), each Re then Im
+  Vector line_;
+  std::vector<std::complex<Scalar>> spectrum_;
+};
+
 /// One element's traction under Coulomb's law when its slip is s = r + (k_x p_x, k_y p_y)
 /// (docs/tangential.md §7): adhesion p = −r/k if that is within the bound g (s = 0), else
 /// slip p = −g s/|s|, i.e. p_c = −g r_c/(σ + g k_c) with σ = |s| the root of
-/// Σ_c r_c²/(σ + g k_c)² = 1, convex and decreasing in σ, so that Newton's method from σ = 0
-/// climbs to it monotonically.
+/// Σ_c r_c²/(σ + g k_c)² = 1, convex and decreasing in σ, so that Newton's method from below
+/// the root climbs to it monotonically. It starts from |r| − g·max k, below the root (every
+/// term is at least r_c²/(σ + g·max k)²) and within g·|k_x − k_y| of it: two or three steps,
+/// where σ = 0 took tens when |r| ≫ g k.
 template <typename Scalar>
 struct ElementTraction {
   Scalar x, y;
@@ -106,7 +218,7 @@ ElementTraction<Scalar> coulomb_element(Scalar rx, Scalar ry, Scalar bound, Scal
   if (adhesion_x * adhesion_x + adhesion_y * adhesion_y <= bound * bound) {
     return {adhesion_x, adhesion_y, TractionState::adhesion};
   }
-  Scalar sigma = 0;
+  Scalar sigma = std::max(Scalar(0), std::hypot(rx, ry) - bound * std::max(kx, ky));
   for (int newton = 0; newton < 100; ++newton) {
     const Scalar ex = sigma + bound * kx, ey = sigma + bound * ky;
     const Scalar excess = rx * rx / (ex * ex) + ry * ry / (ey * ey) - 1;
@@ -132,9 +244,10 @@ ElementTraction<Scalar> coulomb_element(Scalar rx, Scalar ry, Scalar bound, Scal
 /// element towards the leading edge as CONTACT does; in adhesion s_I = 0 and
 /// |p_I| ≤ μ p_n,I, in slip p_I = −μ p_n,I s_I/|s_I|. Each sweep solves every element's
 /// 2 × 2 problem with the others fixed, from the leading edge to the trailing one, moving the
-/// adhesion stretch behind the element with it, and updates the slips of the contact rows by
-/// the change (nonlinear Gauss–Seidel in the differences of Eq. (T7), Anderson-mixed once
-/// the adhesion and slip areas hold, docs/tangential.md §7).
+/// adhesion stretch behind the element with it; the row's own slips follow each change, the
+/// other rows' follow the finished row's change through their spectra along x (nonlinear
+/// Gauss–Seidel in the differences of Eq. (T7), Anderson-mixed once the adhesion and slip
+/// areas hold, docs/tangential.md §7).
 ///
 /// **Example**
 /// @code
@@ -201,49 +314,67 @@ class SteadyRollingSolver {
     }
 
     // The rows of the grid that hold contact, and the columns each spans: only there is the
-    // slip read (docs/tangential.md §7).
+    // slip read (docs/tangential.md §7). The box they span bounds the rows' spectra.
     std::vector<Index> first_column(static_cast<std::size_t>(my), mx), last_column(static_cast<std::size_t>(my), -1);
+    Index box_first_column = mx, box_last_column = -1, box_first_row = my, box_last_row = -1;
     for (Index k = 0; k < n; ++k) {
       if (answer.state(k) == TractionState::exterior) continue;
-      const auto j = static_cast<std::size_t>(grid.j_of(k));
-      first_column[j] = std::min(first_column[j], grid.i_of(k));
-      last_column[j] = std::max(last_column[j], grid.i_of(k));
+      const Index i = grid.i_of(k), j = grid.j_of(k);
+      first_column[static_cast<std::size_t>(j)] = std::min(first_column[static_cast<std::size_t>(j)], i);
+      last_column[static_cast<std::size_t>(j)] = std::max(last_column[static_cast<std::size_t>(j)], i);
+      box_first_column = std::min(box_first_column, i), box_last_column = std::max(box_last_column, i);
+      box_first_row = std::min(box_first_row, j), box_last_row = std::max(box_last_row, j);
     }
-    // iterate = (p_x, p_y, elastic_x, elastic_y), with elastic = Σ C q/dx = D p over the
-    // contact rows (T7), kept up to date as tractions change. Moving p by `change` on a
-    // stretch of row j from column `from` down to the column before `to` changes q by
-    // +change at `from` and −change at `to` (which may lie one column beyond the grid): both
-    // move each contact row by a slice of one table column of C, or together by one of D
-    // when the stretch is the element alone.
-    Vector iterate = Vector::Zero(4 * n);
-    auto traction_x = iterate.segment(0, n), traction_y = iterate.segment(n, n);
-    auto elastic_x = iterate.segment(2 * n, n), elastic_y = iterate.segment(3 * n, n);
+    const Index box_rows = box_last_row - box_first_row + 1;
+    detail::RowSpectra<Scalar> spectra(rolling, box_first_column, box_last_column - box_first_column + 1, box_rows);
+    const Index spectrum_size = spectra.spectrum_size();
+
+    // The iterate: the tractions p and the spectra of the elastic slips D p of every box row
+    // (T7), kept up to date as rows change. A sweep reads a row's D p back from its spectrum
+    // when it reaches the row and keeps it up to date along the row: moving p by `change` on
+    // a stretch of the row from column `from` down to the column before `to` changes q by
+    // +change at `from` and −change at `to` (which may lie one column beyond the grid), which
+    // moves the row's slips by a slice of one table column of C, or of D when the stretch is
+    // the element alone. Once the row is done, its change goes to every row's spectrum: the
+    // rows ahead see it before the sweep reaches them, as they would element by element.
+    Vector iterate = Vector::Zero(2 * n + spectrum_size * box_rows);
+    auto tractions = iterate.head(2 * n), traction_x = iterate.segment(0, n), traction_y = iterate.segment(n, n);
+    auto elastic_spectrum = [&](Index j) { return iterate.segment(2 * n + spectrum_size * (j - box_first_row), spectrum_size); };
+    Vector elastic_x = Vector::Zero(n), elastic_y = Vector::Zero(n), row_change(2 * mx), change_spectrum(spectrum_size);
     auto shift_stretch = [&](Index from, Index to, Index j, Scalar change_x, Scalar change_y) {
       for (Index moved = from; moved != to; moved -= upstream) {
         traction_x(moved + mx * j) += change_x;
         traction_y(moved + mx * j) += change_y;
       }
-      const bool alone = to == from - upstream;
-      for (Index row = 0; row < my; ++row) {
-        const Index first = first_column[static_cast<std::size_t>(row)], length = last_column[static_cast<std::size_t>(row)] - first + 1;
-        if (length <= 0) continue;
-        // C(i_t − from, row − j) − C(i_t − to, row − j) for i_t = first … last
-        const Index column = my - 1 + row - j, at_from = mx + first - from, at_to = mx + first - to;
-        auto target_x = elastic_x.segment(row * mx + first, length), target_y = elastic_y.segment(row * mx + first, length);
-        if (alone) {
-          const auto xx = rolling.one_xx.col(column).segment(at_from, length);
-          const auto xy = rolling.one_xy.col(column).segment(at_from, length);
-          const auto yy = rolling.one_yy.col(column).segment(at_from, length);
-          target_x += change_x * xx + change_y * xy;
-          target_y += change_x * xy + change_y * yy;
-        } else {
-          const auto xx = rolling.xx.col(column), xy = rolling.xy.col(column), yy = rolling.yy.col(column);
-          const auto dxx = xx.segment(at_from, length) - xx.segment(at_to, length);
-          const auto dxy = xy.segment(at_from, length) - xy.segment(at_to, length);
-          const auto dyy = yy.segment(at_from, length) - yy.segment(at_to, length);
-          target_x += change_x * dxx + change_y * dxy;
-          target_y += change_x * dxy + change_y * dyy;
-        }
+      const Index first = first_column[static_cast<std::size_t>(j)], length = last_column[static_cast<std::size_t>(j)] - first + 1;
+      // C(i_t − from, 0) − C(i_t − to, 0) for i_t = first … last
+      const Index column = my - 1, at_from = mx + first - from, at_to = mx + first - to;
+      auto target_x = elastic_x.segment(j * mx + first, length), target_y = elastic_y.segment(j * mx + first, length);
+      if (to == from - upstream) {
+        const auto xx = rolling.one_xx.col(column).segment(at_from, length);
+        const auto xy = rolling.one_xy.col(column).segment(at_from, length);
+        const auto yy = rolling.one_yy.col(column).segment(at_from, length);
+        target_x += change_x * xx + change_y * xy;
+        target_y += change_x * xy + change_y * yy;
+      } else {
+        const auto xx = rolling.xx.col(column), xy = rolling.xy.col(column), yy = rolling.yy.col(column);
+        const auto dxx = xx.segment(at_from, length) - xx.segment(at_to, length);
+        const auto dxy = xy.segment(at_from, length) - xy.segment(at_to, length);
+        const auto dyy = yy.segment(at_from, length) - yy.segment(at_to, length);
+        target_x += change_x * dxx + change_y * dxy;
+        target_y += change_x * dxy + change_y * dyy;
+      }
+    };
+    auto elastic_of_row = [&](Index j) { spectra.inverse(elastic_spectrum(j), elastic_x.data() + j * mx, elastic_y.data() + j * mx); };
+    // row_change holds the row's tractions (x then y) before the sweep reached it.
+    auto spread_row_change = [&](Index j) {
+      row_change.head(mx) = traction_x.segment(j * mx, mx) - row_change.head(mx);
+      row_change.tail(mx) = traction_y.segment(j * mx, mx) - row_change.tail(mx);
+      if (row_change.cwiseAbs().maxCoeff() == 0) return;
+      spectra.forward(row_change.data(), row_change.data() + mx, change_spectrum);
+      for (Index target = box_first_row; target <= box_last_row; ++target) {
+        if (last_column[static_cast<std::size_t>(target)] < 0) continue;
+        spectra.add(target - box_first_row, j - box_first_row, change_spectrum, elastic_spectrum(target));
       }
     };
 
@@ -253,12 +384,13 @@ class SteadyRollingSolver {
     // that the element meets Coulomb's conditions with the rest fixed; the local coefficient
     // is the move's own, (C(0) − C(I − J))/dx with J the stretch's end, times a relaxation ρ
     // (docs/tangential.md §7).
-    // Once a sweep leaves every element's state as it found it, the sweeps are Anderson-mixed.
+    // Once a sweep leaves every element's state as it found it, the sweeps are Anderson-mixed
+    // (tractions and spectra together: both are linear in p).
     // A sweep whose change grows tenfold past the smallest met, or a smallest change that
     // does not halve in 40 sweeps, restarts the solve from zero with ρ 1.5 times larger.
     const Scalar own_x = rolling.xx(mx, my - 1), own_y = rolling.yy(mx, my - 1);
     Scalar relaxation = Scalar(1.5);
-    detail::AndersonMixing<Scalar> mixing(4 * n, 2 * n, 6);
+    detail::AndersonMixing<Scalar> mixing(iterate.size(), 2 * n, 6);
     Vector before(2 * n), residual(2 * n);
     Scalar smallest_change = std::numeric_limits<Scalar>::infinity(), checkpoint_change = smallest_change;
     int checkpoint_sweep = 0;
@@ -266,10 +398,13 @@ class SteadyRollingSolver {
     bool converged = false;
     while (answer.sweeps < options_.max_sweeps) {
       ++answer.sweeps;
-      before = iterate.head(2 * n);
+      before = tractions;
       bool states_changed = false;
       for (Index j = 0; j < my; ++j) {
         if (last_column[static_cast<std::size_t>(j)] < 0) continue;
+        elastic_of_row(j);
+        row_change.head(mx) = traction_x.segment(j * mx, mx);
+        row_change.tail(mx) = traction_y.segment(j * mx, mx);
         for (Index i = upstream_column; i >= 0 && i < mx; i -= upstream) {
           const Index k = i + mx * j;
           if (answer.state(k) == TractionState::exterior) continue;
@@ -284,8 +419,9 @@ class SteadyRollingSolver {
           answer.state(k) = local.state;
           if (local.x != px || local.y != py) shift_stretch(i, end, j, local.x - px, local.y - py);
         }
+        spread_row_change(j);
       }
-      residual = iterate.head(2 * n) - before;
+      residual = tractions - before;
       const Scalar largest_change = residual.cwiseAbs().maxCoeff();
       answer.residual = largest_change / scale;
       converged = answer.residual <= options_.tolerance;
@@ -315,6 +451,9 @@ class SteadyRollingSolver {
     answer.traction_x = traction_x;
     answer.traction_y = traction_y;
 
+    for (Index j = box_first_row; j <= box_last_row; ++j) {
+      if (last_column[static_cast<std::size_t>(j)] >= 0) elastic_of_row(j);
+    }
     for (Index k = 0; k < n; ++k) {
       if (answer.state(k) != TractionState::slip) continue;
       answer.slip_x(k) = rigid_x(k) + elastic_x(k);

@@ -282,6 +282,50 @@ TEST_CASE("An element's Coulomb problem is solved exactly", "[tangential]") {
   CHECK(slipping < 180);
 }
 
+TEST_CASE("The rows' spectra give the steady-rolling operator's product summed directly", "[tangential]") {
+  // D p on a box of the grid from each row's change spread through the spectra
+  // (docs/tangential.md §7), against the sum over every source element of the D tables.
+  const fastnorm::Grid<> grid(13, 9, 0.5e-3, 0.7e-3);
+  const fastnorm::TangentialInfluenceTable<> influence(grid, fastnorm::Material<>(2.1e11, 0.28));
+  const Eigen::Index first_column = 3, columns = 8, first_row = 1, rows = 7, mx = grid.mx(), my = grid.my();
+  for (const auto direction : {fastnorm::RollingDirection::positive_x, fastnorm::RollingDirection::negative_x}) {
+    const fastnorm::detail::RollingOperator<double> rolling(influence, direction);
+    fastnorm::detail::RowSpectra<double> spectra(rolling, first_column, columns, rows);
+    Eigen::VectorXd traction_x = Eigen::VectorXd::Zero(grid.size()), traction_y = traction_x;
+    for (Eigen::Index j = first_row; j < first_row + rows; ++j) {
+      for (Eigen::Index i = first_column; i < first_column + columns; ++i) {
+        traction_x(i + mx * j) = std::sin(1.7 * double(i) + 0.3 * double(j * j));
+        traction_y(i + mx * j) = std::cos(0.9 * double(i * j) - 0.4 * double(i));
+      }
+    }
+    Eigen::MatrixXd elastic_spectra = Eigen::MatrixXd::Zero(spectra.spectrum_size(), rows);
+    Eigen::VectorXd change(spectra.spectrum_size());
+    for (Eigen::Index source = 0; source < rows; ++source) {
+      const Eigen::Index j = first_row + source;
+      spectra.forward(traction_x.data() + mx * j, traction_y.data() + mx * j, change);
+      for (Eigen::Index target = 0; target < rows; ++target) spectra.add(target, source, change, elastic_spectra.col(target));
+    }
+    double largest = 0, worst = 0;
+    for (Eigen::Index target = 0; target < rows; ++target) {
+      const Eigen::Index j = first_row + target;
+      Eigen::VectorXd elastic_x = Eigen::VectorXd::Zero(mx), elastic_y = elastic_x;
+      spectra.inverse(elastic_spectra.col(target), elastic_x.data(), elastic_y.data());
+      for (Eigen::Index i = first_column; i < first_column + columns; ++i) {
+        double direct_x = 0, direct_y = 0;
+        for (Eigen::Index k = 0; k < grid.size(); ++k) {
+          const Eigen::Index row = mx + i - grid.i_of(k), column = my - 1 + j - grid.j_of(k);
+          direct_x += rolling.one_xx(row, column) * traction_x(k) + rolling.one_xy(row, column) * traction_y(k);
+          direct_y += rolling.one_xy(row, column) * traction_x(k) + rolling.one_yy(row, column) * traction_y(k);
+        }
+        largest = std::max({largest, std::abs(direct_x), std::abs(direct_y)});
+        worst = std::max({worst, std::abs(elastic_x(i) - direct_x), std::abs(elastic_y(i) - direct_y)});
+      }
+    }
+    CHECK(largest > 0);
+    CHECK(worst <= 1e-12 * largest);
+  }
+}
+
 TEST_CASE("Anderson mixing solves a linear fixed point as GMRES does, in dimension + 1 steps", "[tangential]") {
   // x = M x + b with M a contraction of spectral radius 0.9 in dimension 5 (independent truth:
   // (I − M)⁻¹ b by LU). With memory 5 the mixed iteration is GMRES on (I − M) x = b (Walker &
