@@ -34,6 +34,15 @@ inline Eigen::Index smooth_fft_length(Eigen::Index minimum, Eigen::Index multipl
   }
 }
 
+/// Eigen's FFT without scaling (the callers fold 1/n into their kernels) and with half
+/// spectra of real sequences (n/2 + 1 values).
+template <typename Scalar>
+Eigen::FFT<Scalar> half_spectrum_fft() {
+  return Eigen::FFT<Scalar>(typename Eigen::FFT<Scalar>::impl_type(),
+                            static_cast<typename Eigen::FFT<Scalar>::Flag>(Eigen::FFT<Scalar>::Unscaled |
+                                                                          Eigen::FFT<Scalar>::HalfSpectrum));
+}
+
 }  // namespace detail
 
 /// u = C p on a grid by FFT. The kernel offsets (di, dj), |di| < mx, |dj| < my, are laid
@@ -116,9 +125,7 @@ class FftConvolution {
         nx_(detail::smooth_fft_length(kernel == Kernel::toeplitz ? 2 * mx_ : mx_, 4)),
         ny_(detail::smooth_fft_length(std::max<Index>(kernel == Kernel::toeplitz ? 2 * my_ - 1 : my_, 2), 1)),
         half_(nx_ / 2 + 1),
-        fft_(typename Eigen::FFT<Scalar>::impl_type(),
-             static_cast<typename Eigen::FFT<Scalar>::Flag>(Eigen::FFT<Scalar>::Unscaled |
-                                                           Eigen::FFT<Scalar>::HalfSpectrum)),
+        fft_(detail::half_spectrum_fft<Scalar>()),
         spectrum_(half_, ny_),
         line_(static_cast<std::size_t>(ny_)),
         line_spectrum_(static_cast<std::size_t>(ny_)),

@@ -44,48 +44,48 @@ namespace detail {
 /// of an element minus its upstream neighbour's (the element on the leading-edge side; p is
 /// zero outside the contact, so an exterior element just downstream of contact carries
 /// q = −p of its upstream neighbour), the elastic part of the slip is
-/// (u_I − u_I⁺)/dx = Σ_K C(I − K) q_K/dx (docs/tangential.md Eq. (T7)). Stored as C/dx for
-/// every offset |di| ≤ mx, |dj| ≤ my − 1 (a q just beyond the grid's downstream edge is
-/// |di| = mx away from the far column), column-major in di, so a change of one q moves a
-/// whole row of the grid by a slice of each table column; and, for the commonest change
-/// (one element's traction alone, +Δ on its q and −Δ on its downstream neighbour's), the
-/// same difference D(di) = [C(di) − C(di + e)]/dx of (T6) in one slice.
+/// (u_I − u_I⁺)/dx = Σ_K C(I − K) q_K/dx (docs/tangential.md Eq. (T7)), and in the tractions
+/// themselves Σ_K D(I − K) p_K with D(di) = [C(di) − C(di + e)]/dx (T6). Stored: D for every
+/// offset |di| ≤ mx, |dj| ≤ my − 1, column-major in di (what the rows' spectra are made
+/// of), and C/dx along a row (dj = 0, |di| ≤ mx: a q just beyond the grid's downstream edge
+/// is mx away from the far column), which is all a sweep moves element by element: the
+/// stretch of a row it moves changes q at two elements of that row.
 template <typename Scalar>
 struct RollingOperator {
   using Matrix = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;
+  using Vector = Eigen::Matrix<Scalar, Eigen::Dynamic, 1>;
   Eigen::Index mx = 0, my = 0;
-  Matrix xx, xy, yy;           // C/dx, (2mx + 1) × (2my − 1): row mx + di, column my − 1 + dj
-  Matrix one_xx, one_xy, one_yy;  // D, the same layout; row mx + di for di + e within |di| ≤ mx
+  Matrix one_xx, one_xy, one_yy;  // D, (2mx + 1) × (2my − 1): row mx + di (for di + e within |di| ≤ mx), column my − 1 + dj
+  Vector row_xx, row_xy, row_yy;  // C(di, 0)/dx, row mx + di
 
   RollingOperator(const TangentialInfluenceTable<Scalar>& influence, RollingDirection direction)
       : mx(influence.grid().mx()),
         my(checked_rows(influence.grid())),
-        xx(2 * mx + 1, 2 * my - 1),
-        xy(2 * mx + 1, 2 * my - 1),
-        yy(2 * mx + 1, 2 * my - 1) {
+        one_xx(Matrix::Zero(2 * mx + 1, 2 * my - 1)),
+        one_xy(Matrix::Zero(2 * mx + 1, 2 * my - 1)),
+        one_yy(Matrix::Zero(2 * mx + 1, 2 * my - 1)) {
     const Grid<Scalar>& grid = influence.grid();
+    // D(di) = C(di) − C(di + e): entry r of a column of D is entry r of C's minus entry r + e.
+    const Eigen::Index e = direction == RollingDirection::positive_x ? 1 : -1, rows = 2 * mx, first = e > 0 ? 0 : 1;
+    Vector xx(2 * mx + 1), xy(2 * mx + 1), yy(2 * mx + 1);  // C/dx at one dj
     for (Eigen::Index dj = -(my - 1); dj <= my - 1; ++dj) {
       for (Eigen::Index di = -mx; di <= mx; ++di) {
         const auto c = influence.coefficients(di, dj);  // |di| = mx: one element past the table
-        xx(mx + di, my - 1 + dj) = c.xx / grid.dx();
-        xy(mx + di, my - 1 + dj) = c.xy / grid.dx();
-        yy(mx + di, my - 1 + dj) = c.yy / grid.dx();
+        xx(mx + di) = c.xx / grid.dx();
+        xy(mx + di) = c.xy / grid.dx();
+        yy(mx + di) = c.yy / grid.dx();
       }
+      one_xx.col(my - 1 + dj).segment(first, rows) = xx.segment(first, rows) - xx.segment(first + e, rows);
+      one_xy.col(my - 1 + dj).segment(first, rows) = xy.segment(first, rows) - xy.segment(first + e, rows);
+      one_yy.col(my - 1 + dj).segment(first, rows) = yy.segment(first, rows) - yy.segment(first + e, rows);
+      if (dj == 0) row_xx = xx, row_xy = xy, row_yy = yy;
     }
-    // D(di) = C(di) − C(di + e): row r of D is row r of C minus row r + e.
-    const Eigen::Index e = direction == RollingDirection::positive_x ? 1 : -1, rows = 2 * mx, first = e > 0 ? 0 : 1;
-    one_xx = Matrix::Zero(2 * mx + 1, 2 * my - 1);
-    one_xy = Matrix::Zero(2 * mx + 1, 2 * my - 1);
-    one_yy = Matrix::Zero(2 * mx + 1, 2 * my - 1);
-    one_xx.middleRows(first, rows) = xx.middleRows(first, rows) - xx.middleRows(first + e, rows);
-    one_xy.middleRows(first, rows) = xy.middleRows(first, rows) - xy.middleRows(first + e, rows);
-    one_yy.middleRows(first, rows) = yy.middleRows(first, rows) - yy.middleRows(first + e, rows);
   }
 
  private:
-  /// my, once the six tables are known to fit the machine's memory.
+  /// my, once the three tables are known to fit the machine's memory.
   static Eigen::Index checked_rows(const Grid<Scalar>& grid) {
-    check_memory(6 * (2 * static_cast<double>(grid.mx()) + 1) * (2 * static_cast<double>(grid.my()) - 1), sizeof(Scalar),
+    check_memory(3 * (2 * static_cast<double>(grid.mx()) + 1) * (2 * static_cast<double>(grid.my()) - 1), sizeof(Scalar),
                  "SteadyRollingSolver: grid mx x my");
     return grid.my();
   }
@@ -118,9 +118,7 @@ class RowSpectra {
         rows_(rows),
         length_(smooth_fft_length(2 * columns, 4)),  // ≥ 2L − 1, a multiple of 4 (kissfft's fast real path)
         frequencies_(length_ / 2 + 1),
-        fft_(typename Eigen::FFT<Scalar>::impl_type(),
-             static_cast<typename Eigen::FFT<Scalar>::Flag>(Eigen::FFT<Scalar>::Unscaled |
-                                                           Eigen::FFT<Scalar>::HalfSpectrum)),
+        fft_(half_spectrum_fft<Scalar>()),
         kernels_(6 * frequencies_, 2 * rows - 1),
         line_(length_),
         spectrum_(static_cast<std::size_t>(frequencies_)) {
@@ -348,16 +346,16 @@ class SteadyRollingSolver {
       }
       const Index first = first_column[static_cast<std::size_t>(j)], length = last_column[static_cast<std::size_t>(j)] - first + 1;
       // C(i_t − from, 0) − C(i_t − to, 0) for i_t = first … last
-      const Index column = my - 1, at_from = mx + first - from, at_to = mx + first - to;
+      const Index at_from = mx + first - from, at_to = mx + first - to;
       auto target_x = elastic_x.segment(j * mx + first, length), target_y = elastic_y.segment(j * mx + first, length);
       if (to == from - upstream) {
-        const auto xx = rolling.one_xx.col(column).segment(at_from, length);
-        const auto xy = rolling.one_xy.col(column).segment(at_from, length);
-        const auto yy = rolling.one_yy.col(column).segment(at_from, length);
+        const auto xx = rolling.one_xx.col(my - 1).segment(at_from, length);
+        const auto xy = rolling.one_xy.col(my - 1).segment(at_from, length);
+        const auto yy = rolling.one_yy.col(my - 1).segment(at_from, length);
         target_x += change_x * xx + change_y * xy;
         target_y += change_x * xy + change_y * yy;
       } else {
-        const auto xx = rolling.xx.col(column), xy = rolling.xy.col(column), yy = rolling.yy.col(column);
+        const auto &xx = rolling.row_xx, &xy = rolling.row_xy, &yy = rolling.row_yy;
         const auto dxx = xx.segment(at_from, length) - xx.segment(at_to, length);
         const auto dxy = xy.segment(at_from, length) - xy.segment(at_to, length);
         const auto dyy = yy.segment(at_from, length) - yy.segment(at_to, length);
@@ -388,7 +386,7 @@ class SteadyRollingSolver {
     // (tractions and spectra together: both are linear in p).
     // A sweep whose change grows tenfold past the smallest met, or a smallest change that
     // does not halve in 40 sweeps, restarts the solve from zero with ρ 1.5 times larger.
-    const Scalar own_x = rolling.xx(mx, my - 1), own_y = rolling.yy(mx, my - 1);
+    const Scalar own_x = rolling.row_xx(mx), own_y = rolling.row_yy(mx);
     Scalar relaxation = Scalar(1.5);
     detail::AndersonMixing<Scalar> mixing(iterate.size(), 2 * n, 6);
     Vector before(2 * n), residual(2 * n);
@@ -410,8 +408,8 @@ class SteadyRollingSolver {
           if (answer.state(k) == TractionState::exterior) continue;
           Index end = i - upstream;  // the first element behind that keeps its traction
           while (end >= 0 && end < mx && answer.state(end + mx * j) == TractionState::adhesion) end -= upstream;
-          const Scalar local_x = relaxation * (own_x - rolling.xx(mx + i - end, my - 1));
-          const Scalar local_y = relaxation * (own_y - rolling.yy(mx + i - end, my - 1));
+          const Scalar local_x = relaxation * (own_x - rolling.row_xx(mx + i - end));
+          const Scalar local_y = relaxation * (own_y - rolling.row_yy(mx + i - end));
           const Scalar px = traction_x(k), py = traction_y(k);
           const auto local = detail::coulomb_element(rigid_x(k) + elastic_x(k) - local_x * px,
                                                      rigid_y(k) + elastic_y(k) - local_y * py, bound(k), local_x, local_y);
