@@ -45,40 +45,31 @@ namespace detail {
 /// zero outside the contact, so an exterior element just downstream of contact carries
 /// q = −p of its upstream neighbour), the elastic part of the slip is
 /// (u_I − u_I⁺)/dx = Σ_K C(I − K) q_K/dx (docs/tangential.md Eq. (T7)), and in the tractions
-/// themselves Σ_K D(I − K) p_K with D(di) = [C(di) − C(di + e)]/dx (T6). Stored: D for every
-/// offset |di| ≤ mx, |dj| ≤ my − 1, column-major in di (what the rows' spectra are made
-/// of), and C/dx along a row (dj = 0, |di| ≤ mx: a q just beyond the grid's downstream edge
-/// is mx away from the far column), which is all a sweep moves element by element: the
-/// stretch of a row it moves changes q at two elements of that row.
+/// themselves Σ_K D(I − K) p_K with D(di) = [C(di) − C(di + e)]/dx (T6), e = `shift` the
+/// step towards the leading edge. Stored: C/dx for every offset |di| ≤ mx, |dj| ≤ my − 1,
+/// column-major in di (a q just beyond the grid's downstream edge is mx away from the far
+/// column); D is the difference of two entries of a column.
 template <typename Scalar>
 struct RollingOperator {
   using Matrix = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;
-  using Vector = Eigen::Matrix<Scalar, Eigen::Dynamic, 1>;
-  Eigen::Index mx = 0, my = 0;
-  Matrix one_xx, one_xy, one_yy;  // D, (2mx + 1) × (2my − 1): row mx + di (for di + e within |di| ≤ mx), column my − 1 + dj
-  Vector row_xx, row_xy, row_yy;  // C(di, 0)/dx, row mx + di
+  Eigen::Index mx = 0, my = 0, shift = 1;
+  Matrix xx, xy, yy;  // C/dx, (2mx + 1) × (2my − 1): row mx + di, column my − 1 + dj
 
   RollingOperator(const TangentialInfluenceTable<Scalar>& influence, RollingDirection direction)
       : mx(influence.grid().mx()),
         my(checked_rows(influence.grid())),
-        one_xx(Matrix::Zero(2 * mx + 1, 2 * my - 1)),
-        one_xy(Matrix::Zero(2 * mx + 1, 2 * my - 1)),
-        one_yy(Matrix::Zero(2 * mx + 1, 2 * my - 1)) {
-    const Grid<Scalar>& grid = influence.grid();
-    // D(di) = C(di) − C(di + e): entry r of a column of D is entry r of C's minus entry r + e.
-    const Eigen::Index e = direction == RollingDirection::positive_x ? 1 : -1, rows = 2 * mx, first = e > 0 ? 0 : 1;
-    Vector xx(2 * mx + 1), xy(2 * mx + 1), yy(2 * mx + 1);  // C/dx at one dj
+        shift(direction == RollingDirection::positive_x ? 1 : -1),
+        xx(2 * mx + 1, 2 * my - 1),
+        xy(2 * mx + 1, 2 * my - 1),
+        yy(2 * mx + 1, 2 * my - 1) {
+    const Scalar dx = influence.grid().dx();
     for (Eigen::Index dj = -(my - 1); dj <= my - 1; ++dj) {
       for (Eigen::Index di = -mx; di <= mx; ++di) {
         const auto c = influence.coefficients(di, dj);  // |di| = mx: one element past the table
-        xx(mx + di) = c.xx / grid.dx();
-        xy(mx + di) = c.xy / grid.dx();
-        yy(mx + di) = c.yy / grid.dx();
+        xx(mx + di, my - 1 + dj) = c.xx / dx;
+        xy(mx + di, my - 1 + dj) = c.xy / dx;
+        yy(mx + di, my - 1 + dj) = c.yy / dx;
       }
-      one_xx.col(my - 1 + dj).segment(first, rows) = xx.segment(first, rows) - xx.segment(first + e, rows);
-      one_xy.col(my - 1 + dj).segment(first, rows) = xy.segment(first, rows) - xy.segment(first + e, rows);
-      one_yy.col(my - 1 + dj).segment(first, rows) = yy.segment(first, rows) - yy.segment(first + e, rows);
-      if (dj == 0) row_xx = xx, row_xy = xy, row_yy = yy;
     }
   }
 
@@ -94,11 +85,15 @@ struct RollingOperator {
 /// D p along the rows of a contact's bounding box by one-dimensional FFTs
 /// (docs/tangential.md §7). For each offset dj between a target row and a source row, the
 /// part of D p that a row's tractions give another row is a Toeplitz product along x with
-/// D(·, dj); zero-padded to N ≥ 2L − 1 (L the box's width), it is a circular convolution,
-/// diagonal in the row's half spectrum. The sweeps keep every contact row's D p as that
-/// spectrum, add a finished row's change to every row there (32 operations a frequency and
-/// row pair, where the direct update costs 6·L a source element and row pair), and
-/// transform a row back when the sweep reaches it.
+/// D(·, dj). D is C's difference, so on a line of N ≥ 2L + 1 points (L the box's width) that
+/// holds C(di, dj)/dx for |di| ≤ L its transform is (1 − e^{2πi e k/N}) times C's, and the
+/// product is a circular convolution, diagonal in the row's half spectrum, that is exact on
+/// the box's columns (what wraps around falls outside them). C_xx and C_yy are even in di,
+/// C_xy is odd: their transforms are real, real and imaginary. The sweeps keep every contact
+/// row's D p as that spectrum; a finished row's change is transformed and multiplied by the
+/// difference's factor once, then added to every row (16 operations a frequency and row
+/// pair; the direct update costs 6·L a source element and row pair), and a row is
+/// transformed back when the sweep reaches it.
 ///
 /// Spectra are stored as real and imaginary parts apart (the products then need no
 /// shuffling of complex pairs, and the sweeps' Anderson mixing sees real numbers): a row's
@@ -116,38 +111,60 @@ class RowSpectra {
       : first_column_(first_column),
         columns_(columns),
         rows_(rows),
-        length_(smooth_fft_length(2 * columns, 4)),  // ≥ 2L − 1, a multiple of 4 (kissfft's fast real path)
+        length_(smooth_fft_length(2 * columns + 1, 4)),  // ≥ 2L + 1, a multiple of 4 (kissfft's fast real path)
         frequencies_(length_ / 2 + 1),
         fft_(half_spectrum_fft<Scalar>()),
-        kernels_(6 * frequencies_, 2 * rows - 1),
+        kernels_(3 * frequencies_, 2 * rows - 1),
+        difference_re_(frequencies_),
+        difference_im_(frequencies_),
         line_(length_),
         spectrum_(static_cast<std::size_t>(frequencies_)) {
-    // Kernel of offset dj: D(di, dj) at di mod N for |di| < L, the inverse transform's 1/N folded in.
+    // Kernel of offset dj: C(di, dj)/dx at di mod N for |di| ≤ L, made exactly even (xx, yy)
+    // or odd (xy) from its di ≥ 0 half; the inverse transform's 1/N folded in.
     const Scalar scale = Scalar(1) / static_cast<Scalar>(length_);
-    const typename RollingOperator<Scalar>::Matrix* tables[3] = {&rolling.one_xx, &rolling.one_xy, &rolling.one_yy};
+    const Matrix* tables[3] = {&rolling.xx, &rolling.xy, &rolling.yy};
     for (Index dj = -(rows - 1); dj < rows; ++dj) {
       for (Index table = 0; table < 3; ++table) {
+        const Scalar odd = table == 1 ? Scalar(-1) : Scalar(1);
         line_.setZero();
-        for (Index di = -(columns - 1); di < columns; ++di) {
-          line_(di >= 0 ? di : length_ + di) = scale * (*tables[table])(rolling.mx + di, rolling.my - 1 + dj);
+        for (Index di = 0; di <= columns; ++di) {
+          const Scalar value = scale * (*tables[table])(rolling.mx + di, rolling.my - 1 + dj);
+          line_(di) = value;
+          if (di > 0) line_(length_ - di) = odd * value;
         }
         fft_.fwd(spectrum_.data(), line_.data(), length_);
-        split(kernels_.col(rows - 1 + dj).segment(2 * table * frequencies_, 2 * frequencies_));
+        auto kernel = kernels_.col(rows - 1 + dj).segment(table * frequencies_, frequencies_);
+        for (Index f = 0; f < frequencies_; ++f) {
+          const auto& value = spectrum_[static_cast<std::size_t>(f)];
+          kernel(f) = table == 1 ? value.imag() : value.real();
+        }
       }
+    }
+    // (1 − e^{2πi e k/N}): the transform of C(di) − C(di + e) over C's.
+    const Scalar turn = 2 * pi<Scalar> * static_cast<Scalar>(rolling.shift) / static_cast<Scalar>(length_);
+    for (Index f = 0; f < frequencies_; ++f) {
+      difference_re_(f) = 1 - std::cos(turn * static_cast<Scalar>(f));
+      difference_im_(f) = -std::sin(turn * static_cast<Scalar>(f));
     }
   }
 
   /// The values a row's spectrum holds (4F).
   Index spectrum_size() const { return 4 * frequencies_; }
 
-  /// The spectra [Re x, Im x, Re y, Im y] of a row's two components on the box's columns
-  /// (`x` and `y` point at the row's column 0).
-  void forward(const Scalar* x, const Scalar* y, Eigen::Ref<Vector> spectra) {
+  /// The spectra [Re x, Im x, Re y, Im y] of a change of a row's two traction components on
+  /// the box's columns (`x` and `y` point at the row's column 0), times D's factor: what add
+  /// takes.
+  void forward_change(const Scalar* x, const Scalar* y, Eigen::Ref<Vector> spectra) {
     for (Index component = 0; component < 2; ++component) {
       line_.head(columns_) = Eigen::Map<const Vector>((component == 0 ? x : y) + first_column_, columns_);
       line_.tail(length_ - columns_).setZero();
       fft_.fwd(spectrum_.data(), line_.data(), length_);
-      split(spectra.segment(2 * component * frequencies_, 2 * frequencies_));
+      const Index at = 2 * component * frequencies_;
+      for (Index f = 0; f < frequencies_; ++f) {
+        const auto& value = spectrum_[static_cast<std::size_t>(f)];
+        spectra(at + f) = value.real() * difference_re_(f) - value.imag() * difference_im_(f);
+        spectra(at + frequencies_ + f) = value.real() * difference_im_(f) + value.imag() * difference_re_(f);
+      }
     }
   }
 
@@ -165,34 +182,24 @@ class RowSpectra {
   }
 
   /// Adds to `target_spectra` (of box row `target`) what a change of box row `source`,
-  /// with spectra `change`, gives it.
+  /// with spectra `change` (forward_change), gives it: C_xx and C_yy real, C_xy = i·c_xy.
   void add(Index target, Index source, const Vector& change, Eigen::Ref<Vector> target_spectra) const {
     const Index f = frequencies_;
     const auto kernel = kernels_.col(rows_ - 1 + target - source);
-    const auto xx_re = kernel.segment(0, f).array(), xx_im = kernel.segment(f, f).array();
-    const auto xy_re = kernel.segment(2 * f, f).array(), xy_im = kernel.segment(3 * f, f).array();
-    const auto yy_re = kernel.segment(4 * f, f).array(), yy_im = kernel.segment(5 * f, f).array();
+    const auto xx = kernel.segment(0, f).array(), xy = kernel.segment(f, f).array(), yy = kernel.segment(2 * f, f).array();
     const auto x_re = change.segment(0, f).array(), x_im = change.segment(f, f).array();
     const auto y_re = change.segment(2 * f, f).array(), y_im = change.segment(3 * f, f).array();
-    target_spectra.segment(0, f).array() += xx_re * x_re - xx_im * x_im + xy_re * y_re - xy_im * y_im;
-    target_spectra.segment(f, f).array() += xx_re * x_im + xx_im * x_re + xy_re * y_im + xy_im * y_re;
-    target_spectra.segment(2 * f, f).array() += xy_re * x_re - xy_im * x_im + yy_re * y_re - yy_im * y_im;
-    target_spectra.segment(3 * f, f).array() += xy_re * x_im + xy_im * x_re + yy_re * y_im + yy_im * y_re;
+    target_spectra.segment(0, f).array() += xx * x_re - xy * y_im;
+    target_spectra.segment(f, f).array() += xx * x_im + xy * y_re;
+    target_spectra.segment(2 * f, f).array() += yy * y_re - xy * x_im;
+    target_spectra.segment(3 * f, f).array() += yy * y_im + xy * x_re;
   }
 
  private:
-  /// spectrum_ into [Re, Im] (2F values).
-  template <typename Parts>
-  void split(Parts&& parts) const {
-    for (Index f = 0; f < frequencies_; ++f) {
-      parts(f) = spectrum_[static_cast<std::size_t>(f)].real();
-      parts(frequencies_ + f) = spectrum_[static_cast<std::size_t>(f)].imag();
-    }
-  }
-
   Index first_column_, columns_, rows_, length_, frequencies_;
   Eigen::FFT<Scalar> fft_;
-  Matrix kernels_;  // 6F × (2 rows − 1): column rows − 1 + dj holds [xx, xy, yy] of D(·, dj), each Re then Im
+  Matrix kernels_;  // 3F × (2 rows − 1): column rows − 1 + dj holds Re C_xx, Im C_xy, Re C_yy of offset dj
+  Vector difference_re_, difference_im_;  // D's factor per frequency
   Vector line_;
   std::vector<std::complex<Scalar>> spectrum_;
 };
@@ -348,20 +355,12 @@ class SteadyRollingSolver {
       // C(i_t − from, 0) − C(i_t − to, 0) for i_t = first … last
       const Index at_from = mx + first - from, at_to = mx + first - to;
       auto target_x = elastic_x.segment(j * mx + first, length), target_y = elastic_y.segment(j * mx + first, length);
-      if (to == from - upstream) {
-        const auto xx = rolling.one_xx.col(my - 1).segment(at_from, length);
-        const auto xy = rolling.one_xy.col(my - 1).segment(at_from, length);
-        const auto yy = rolling.one_yy.col(my - 1).segment(at_from, length);
-        target_x += change_x * xx + change_y * xy;
-        target_y += change_x * xy + change_y * yy;
-      } else {
-        const auto &xx = rolling.row_xx, &xy = rolling.row_xy, &yy = rolling.row_yy;
-        const auto dxx = xx.segment(at_from, length) - xx.segment(at_to, length);
-        const auto dxy = xy.segment(at_from, length) - xy.segment(at_to, length);
-        const auto dyy = yy.segment(at_from, length) - yy.segment(at_to, length);
-        target_x += change_x * dxx + change_y * dxy;
-        target_y += change_x * dxy + change_y * dyy;
-      }
+      const auto xx = rolling.xx.col(my - 1), xy = rolling.xy.col(my - 1), yy = rolling.yy.col(my - 1);
+      const auto dxx = xx.segment(at_from, length) - xx.segment(at_to, length);
+      const auto dxy = xy.segment(at_from, length) - xy.segment(at_to, length);
+      const auto dyy = yy.segment(at_from, length) - yy.segment(at_to, length);
+      target_x += change_x * dxx + change_y * dxy;
+      target_y += change_x * dxy + change_y * dyy;
     };
     auto elastic_of_row = [&](Index j) { spectra.inverse(elastic_spectrum(j), elastic_x.data() + j * mx, elastic_y.data() + j * mx); };
     // row_change holds the row's tractions (x then y) before the sweep reached it.
@@ -369,7 +368,7 @@ class SteadyRollingSolver {
       row_change.head(mx) = traction_x.segment(j * mx, mx) - row_change.head(mx);
       row_change.tail(mx) = traction_y.segment(j * mx, mx) - row_change.tail(mx);
       if (row_change.cwiseAbs().maxCoeff() == 0) return;
-      spectra.forward(row_change.data(), row_change.data() + mx, change_spectrum);
+      spectra.forward_change(row_change.data(), row_change.data() + mx, change_spectrum);
       for (Index target = box_first_row; target <= box_last_row; ++target) {
         if (last_column[static_cast<std::size_t>(target)] < 0) continue;
         spectra.add(target - box_first_row, j - box_first_row, change_spectrum, elastic_spectrum(target));
@@ -386,7 +385,7 @@ class SteadyRollingSolver {
     // (tractions and spectra together: both are linear in p).
     // A sweep whose change grows tenfold past the smallest met, or a smallest change that
     // does not halve in 40 sweeps, restarts the solve from zero with ρ 1.5 times larger.
-    const Scalar own_x = rolling.row_xx(mx), own_y = rolling.row_yy(mx);
+    const Scalar own_x = rolling.xx(mx, my - 1), own_y = rolling.yy(mx, my - 1);
     Scalar relaxation = Scalar(1.5);
     detail::AndersonMixing<Scalar> mixing(iterate.size(), 2 * n, 6);
     Vector before(2 * n), residual(2 * n);
@@ -408,8 +407,8 @@ class SteadyRollingSolver {
           if (answer.state(k) == TractionState::exterior) continue;
           Index end = i - upstream;  // the first element behind that keeps its traction
           while (end >= 0 && end < mx && answer.state(end + mx * j) == TractionState::adhesion) end -= upstream;
-          const Scalar local_x = relaxation * (own_x - rolling.row_xx(mx + i - end));
-          const Scalar local_y = relaxation * (own_y - rolling.row_yy(mx + i - end));
+          const Scalar local_x = relaxation * (own_x - rolling.xx(mx + i - end, my - 1));
+          const Scalar local_y = relaxation * (own_y - rolling.yy(mx + i - end, my - 1));
           const Scalar px = traction_x(k), py = traction_y(k);
           const auto local = detail::coulomb_element(rigid_x(k) + elastic_x(k) - local_x * px,
                                                      rigid_y(k) + elastic_y(k) - local_y * py, bound(k), local_x, local_y);

@@ -302,7 +302,7 @@ TEST_CASE("The rows' spectra give the steady-rolling operator's product summed d
     Eigen::VectorXd change(spectra.spectrum_size());
     for (Eigen::Index source = 0; source < rows; ++source) {
       const Eigen::Index j = first_row + source;
-      spectra.forward(traction_x.data() + mx * j, traction_y.data() + mx * j, change);
+      spectra.forward_change(traction_x.data() + mx * j, traction_y.data() + mx * j, change);
       for (Eigen::Index target = 0; target < rows; ++target) spectra.add(target, source, change, elastic_spectra.col(target));
     }
     double largest = 0, worst = 0;
@@ -313,9 +313,13 @@ TEST_CASE("The rows' spectra give the steady-rolling operator's product summed d
       for (Eigen::Index i = first_column; i < first_column + columns; ++i) {
         double direct_x = 0, direct_y = 0;
         for (Eigen::Index k = 0; k < grid.size(); ++k) {
-          const Eigen::Index row = mx + i - grid.i_of(k), column = my - 1 + j - grid.j_of(k);
-          direct_x += rolling.one_xx(row, column) * traction_x(k) + rolling.one_xy(row, column) * traction_y(k);
-          direct_y += rolling.one_xy(row, column) * traction_x(k) + rolling.one_yy(row, column) * traction_y(k);
+          // D(di) = C(di) − C(di + e), e the step towards the leading edge (T6).
+          const Eigen::Index row = mx + i - grid.i_of(k), column = my - 1 + j - grid.j_of(k), ahead = row + rolling.shift;
+          const double xx = rolling.xx(row, column) - rolling.xx(ahead, column);
+          const double xy = rolling.xy(row, column) - rolling.xy(ahead, column);
+          const double yy = rolling.yy(row, column) - rolling.yy(ahead, column);
+          direct_x += xx * traction_x(k) + xy * traction_y(k);
+          direct_y += xy * traction_x(k) + yy * traction_y(k);
         }
         largest = std::max({largest, std::abs(direct_x), std::abs(direct_y)});
         worst = std::max({worst, std::abs(elastic_x(i) - direct_x), std::abs(elastic_y(i) - direct_y)});
