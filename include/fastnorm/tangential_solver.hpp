@@ -208,9 +208,12 @@ class RowSpectra {
 /// (docs/tangential.md §7): adhesion p = −r/k if that is within the bound g (s = 0), else
 /// slip p = −g s/|s|, i.e. p_c = −g r_c/(σ + g k_c) with σ = |s| the root of
 /// Σ_c r_c²/(σ + g k_c)² = 1, convex and decreasing in σ, so that Newton's method from below
-/// the root climbs to it monotonically. It starts from |r| − g·max k, below the root (every
-/// term is at least r_c²/(σ + g·max k)²) and within g·|k_x − k_y| of it: two or three steps,
-/// where σ = 0 took tens when |r| ≫ g k.
+/// the root climbs to it monotonically. It starts from σ₀ = |r| − Σ_c w_c g k_c, the weights
+/// w_c = r_c²/|r|²: with d_c = (g k_c − Σ w g k)/|r|, which the weights average to zero, the
+/// sum at σ₀ is Σ_c w_c/(1 + d_c)² ≥ 1 by Jensen's inequality (1/(1 + d)² is convex), so σ₀
+/// lies below the root, and within about (3/2)|r|·Σ_c w_c d_c² of it. Newton's passes per
+/// element in slip (the last finding no progress), three wheel–rail patches at three
+/// creepage scales: 3.6 from σ₀, 4.9 from |r| − g·max k; σ = 0 took tens when |r| ≫ g k.
 template <typename Scalar>
 struct ElementTraction {
   Scalar x, y;
@@ -223,11 +226,12 @@ ElementTraction<Scalar> coulomb_element(Scalar rx, Scalar ry, Scalar bound, Scal
   if (adhesion_x * adhesion_x + adhesion_y * adhesion_y <= bound * bound) {
     return {adhesion_x, adhesion_y, TractionState::adhesion};
   }
-  Scalar sigma = std::max(Scalar(0), std::hypot(rx, ry) - bound * std::max(kx, ky));
+  const Scalar rx2 = rx * rx, ry2 = ry * ry, size_squared = rx2 + ry2;  // slips: no overflow
+  Scalar sigma = std::max(Scalar(0), std::sqrt(size_squared) - bound * (rx2 * kx + ry2 * ky) / size_squared);
   for (int newton = 0; newton < 100; ++newton) {
     const Scalar ex = sigma + bound * kx, ey = sigma + bound * ky;
-    const Scalar excess = rx * rx / (ex * ex) + ry * ry / (ey * ey) - 1;
-    const Scalar derivative = -2 * (rx * rx / (ex * ex * ex) + ry * ry / (ey * ey * ey));
+    const Scalar excess = rx2 / (ex * ex) + ry2 / (ey * ey) - 1;
+    const Scalar derivative = -2 * (rx2 / (ex * ex * ex) + ry2 / (ey * ey * ey));
     const Scalar next = sigma - excess / derivative;
     if (!(next > sigma) || next - sigma <= std::numeric_limits<Scalar>::epsilon() * next) {
       sigma = std::max(sigma, next);
