@@ -343,8 +343,8 @@ class SteadyRollingSolver {
     // when it reaches the row and keeps it up to date along the row: moving p by `change` on
     // a stretch of the row from column `from` down to the column before `to` changes q by
     // +change at `from` and −change at `to` (which may lie one column beyond the grid), which
-    // moves the row's slips by a slice of one table column of C, or of D when the stretch is
-    // the element alone. Once the row is done, its change goes to every row's spectrum: the
+    // moves the row's slips by the difference of two slices of the row's column of C (a
+    // slice of D when the stretch is the element alone). Once the row is done, its change goes to every row's spectrum: the
     // rows ahead see it before the sweep reaches them, as they would element by element.
     Vector iterate = Vector::Zero(2 * n + spectrum_size * box_rows);
     auto tractions = iterate.head(2 * n), traction_x = iterate.segment(0, n), traction_y = iterate.segment(n, n);
