@@ -297,7 +297,7 @@ class SteadyRollingSolver {
     const detail::RollingOperator<Scalar>& rolling = *rolling_;
     const Index mx = grid.mx(), my = grid.my(), n = grid.size();
     detail::check_tangential_input(grid, normal, friction, creepage, "SteadyRollingSolver::solve");
-    const Index upstream = direction_ == RollingDirection::positive_x ? 1 : -1;  // towards the leading edge
+    const Index upstream = rolling.shift;  // towards the leading edge
     const Index upstream_column = upstream > 0 ? mx - 1 : 0;
 
     TangentialSolution<Scalar> answer = detail::zero_answer<Scalar>(n);
@@ -344,8 +344,9 @@ class SteadyRollingSolver {
     // a stretch of the row from column `from` down to the column before `to` changes q by
     // +change at `from` and −change at `to` (which may lie one column beyond the grid), which
     // moves the row's slips by the difference of two slices of the row's column of C (a
-    // slice of D when the stretch is the element alone). Once the row is done, its change goes to every row's spectrum: the
-    // rows ahead see it before the sweep reaches them, as they would element by element.
+    // slice of D when the stretch is the element alone). Once the row is done, its change
+    // goes to every row's spectrum: the rows ahead see it before the sweep reaches them, as
+    // they would element by element.
     Vector iterate = Vector::Zero(2 * n + spectrum_size * box_rows);
     auto tractions = iterate.head(2 * n), traction_x = iterate.segment(0, n), traction_y = iterate.segment(n, n);
     auto elastic_spectrum = [&](Index j) { return iterate.segment(2 * n + spectrum_size * (j - box_first_row), spectrum_size); };
