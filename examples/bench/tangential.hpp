@@ -24,6 +24,14 @@
 //     mz=<N m> dfx=<μFn> dfy=<μFn> dmz=<μFn c>
 //   strip_theory case=<name> ... (the same fields)
 //
+// and the exact path once more with CONTACT's stopping rule at the EPS of CONTACT's wheel–rail
+// runs (TangentialStop::rms_change, tolerance 10⁻⁵: the root mean square of a sweep's traction
+// changes at most 10⁻⁵ times the tractions'; the default stops when no traction changes by
+// more than 10⁻⁹ μ·max p_n), with its differences from the default's answer:
+//
+//   contact_rule case=<name> eps=1e-05 solve_ms=<median> sweeps=<k> speedup=<default/this> nadh=<n>
+//     nslip=<n> dfx=<μFn> dfy=<μFn> dmz=<μFn c>
+//
 // The normal problem is solved once by NORM and the solver's tables built once; the times
 // are medians over --repeats solves (the fast paths' of 100 solves each), interleaved, one thread.
 //
@@ -54,24 +62,31 @@
 
 namespace fastnorm_bench {
 
-/// Times `repeats` solves of one steady-rolling problem by the exact path and by FASTSIM
-/// (Kalker's flexibilities of the equivalent ellipse, on the same NORM pressure),
-/// interleaved, and prints a line for each; FASTSIM's time is the median of samples of
-/// `batch` solves each.
+/// Times `repeats` solves of one steady-rolling problem by the exact path (with its default
+/// stopping rule and with CONTACT's), by FASTSIM (Kalker's flexibilities of the equivalent
+/// ellipse, on the same NORM pressure) and by strip theory, interleaved, and prints a line for
+/// each; the fast paths' times are medians of samples of `batch` solves each.
 inline void time_steady_rolling(const std::string& name, const fastnorm::Grid<>& grid, const fastnorm::Material<>& material,
                                 const fastnorm::Solution<>& normal, double friction,
                                 const fastnorm::Creepage<>& creepage, int repeats) {
   const fastnorm::SteadyRollingSolver<> rolling(grid, material);
+  fastnorm::TangentialOptions<> contact_options;
+  contact_options.stop = fastnorm::TangentialStop::rms_change;
+  contact_options.tolerance = 1e-5;
+  const fastnorm::SteadyRollingSolver<> contact_rule(grid, material, fastnorm::RollingDirection::positive_x, contact_options);
   const auto ellipse = fastnorm::equivalent_ellipse(grid, normal);
   const auto flexibility = fastnorm::kalker_flexibility(ellipse, material);
   const int batch = 100;
   fastnorm::StripTheory<> strips(material);
-  std::vector<double> times, fast_times, strip_times;
-  fastnorm::TangentialSolution<> answer, fast, strip;
+  std::vector<double> times, contact_times, fast_times, strip_times;
+  fastnorm::TangentialSolution<> answer, contact_answer, fast, strip;
   for (int r = 0; r < repeats; ++r) {
     auto start = std::chrono::steady_clock::now();
     answer = rolling.solve(normal, friction, creepage);
     times.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+    start = std::chrono::steady_clock::now();
+    contact_answer = contact_rule.solve(normal, friction, creepage);
+    contact_times.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
     start = std::chrono::steady_clock::now();
     for (int b = 0; b < batch; ++b) fast = fastnorm::solve_fastsim(grid, normal, friction, creepage, flexibility);
     fast_times.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() / batch);
@@ -80,6 +95,7 @@ inline void time_steady_rolling(const std::string& name, const fastnorm::Grid<>&
     strip_times.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() / batch);
   }
   std::sort(times.begin(), times.end());
+  std::sort(contact_times.begin(), contact_times.end());
   std::sort(fast_times.begin(), fast_times.end());
   std::sort(strip_times.begin(), strip_times.end());
   const double exact_time = times[times.size() / 2];
@@ -91,6 +107,14 @@ inline void time_steady_rolling(const std::string& name, const fastnorm::Grid<>&
               answer.force_y, answer.spin_moment);
   // Differences from the exact path in μFn and μFn·c, c = √(ab) of the equivalent ellipse.
   const double scale = friction * normal.normal_force, c = std::sqrt(ellipse.a * ellipse.b);
+  const double contact_time = contact_times[contact_times.size() / 2];
+  std::printf("contact_rule case=%s eps=%.0e solve_ms=%.2f sweeps=%d speedup=%.2f nadh=%ld nslip=%ld dfx=%.1e dfy=%.1e "
+              "dmz=%.1e\n",
+              name.c_str(), contact_options.tolerance, contact_time * 1e3, contact_answer.sweeps,
+              exact_time / contact_time, static_cast<long>(contact_answer.adhesion_elements),
+              static_cast<long>(contact_answer.slip_elements), (contact_answer.force_x - answer.force_x) / scale,
+              (contact_answer.force_y - answer.force_y) / scale,
+              (contact_answer.spin_moment - answer.spin_moment) / (scale * c));
   for (int method = 0; method < 2; ++method) {
     const auto& result = method == 0 ? fast : strip;
     const double time = method == 0 ? fast_times[fast_times.size() / 2] : strip_times[strip_times.size() / 2];

@@ -52,7 +52,10 @@ struct TangentialSolution {
   /// the rolling speed V (m/s) it is the power the friction dissipates (W).
   Scalar frictional_power_per_speed = 0;
   int sweeps = 0;       ///< of the elements from the leading edge (1 for the simplified theory)
-  Scalar residual = 0;  ///< the largest traction change of the last sweep / (μ·max p_n)
+  /// The last sweep's traction changes by the exact path's stopping rule (TangentialStop):
+  /// the largest / (μ·max p_n), or their root mean square / the tractions'; 0 for the
+  /// simplified theory.
+  Scalar residual = 0;
   bool ok() const { return status == Status::converged; }
 };
 
