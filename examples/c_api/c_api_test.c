@@ -380,7 +380,8 @@ static void steady_rolling_meets_contact(void) {
   fastnorm_solver_destroy(norm);
   const fastnorm_creepage creepage = {0, -6.25e-4, 0.625, 0, 0};
   fastnorm_tangential_result rolling;
-  REQUIRE_OK(fastnorm_steady_rolling(&grid, &material, pressure, 0.3, &creepage, 1, traction_x, traction_y, &rolling));
+  REQUIRE_OK(fastnorm_steady_rolling(&grid, &material, pressure, 0.3, &creepage, 1, NULL, traction_x, traction_y,
+                                     &rolling));
   const double mu_fn = 0.3 * 82e3;
   EXPECT(rolling.status == FASTNORM_CONVERGED);
   EXPECT(fabs(rolling.force_y + 14940) <= 0.015 * mu_fn);
@@ -389,12 +390,38 @@ static void steady_rolling_meets_contact(void) {
   double sum = 0;
   for (int k = 0; k < size; ++k) sum += traction_y[k] * grid.dx * grid.dy;
   EXPECT(fabs(sum - rolling.force_y) <= 1e-9 * mu_fn);
-  expect_error(fastnorm_steady_rolling(&grid, &material, pressure, -0.3, &creepage, 1, traction_x, traction_y, &rolling),
+  /* CONTACT's stopping rule at its EPS of 1e-5: fewer sweeps, the same areas, the forces
+   * within 1e-6 mu Fn (docs/tangential.md §7), its residual the rms ratio it bounds. */
+  fastnorm_tangential_options options = {FASTNORM_STOP_RMS_CHANGE, 0, 1e-5};
+  fastnorm_tangential_result loose;
+  REQUIRE_OK(fastnorm_steady_rolling(&grid, &material, pressure, 0.3, &creepage, 1, &options, traction_x, traction_y,
+                                     &loose));
+  EXPECT(loose.status == FASTNORM_CONVERGED && loose.residual <= 1e-5);
+  EXPECT(loose.sweeps < rolling.sweeps);
+  EXPECT(loose.adhesion_elements == 356 && loose.slip_elements == 920);
+  EXPECT(fabs(loose.force_y - rolling.force_y) <= 1e-6 * mu_fn);
+  options.max_sweeps = 3; /* a limit met first */
+  REQUIRE_OK(fastnorm_steady_rolling(&grid, &material, pressure, 0.3, &creepage, 1, &options, traction_x, traction_y,
+                                     &loose));
+  EXPECT(loose.status == FASTNORM_ITERATION_LIMIT && loose.sweeps == 3);
+  expect_error(fastnorm_steady_rolling(&grid, &material, pressure, -0.3, &creepage, 1, NULL, traction_x, traction_y,
+                                       &rolling),
                "friction");
-  expect_error(fastnorm_steady_rolling(&grid, &material, pressure, 0.3, &creepage, 0, traction_x, traction_y, &rolling),
+  expect_error(fastnorm_steady_rolling(&grid, &material, pressure, 0.3, &creepage, 0, NULL, traction_x, traction_y,
+                                       &rolling),
                "rolling");
-  expect_error(fastnorm_steady_rolling(&grid, &material, pressure, 0.3, NULL, 1, traction_x, traction_y, &rolling),
+  expect_error(fastnorm_steady_rolling(&grid, &material, pressure, 0.3, NULL, 1, NULL, traction_x, traction_y, &rolling),
                "creepage");
+  const fastnorm_tangential_options bad_stop = {2, 0, 0}, bad_sweeps = {0, -1, 0}, bad_tolerance = {0, 0, 1.5};
+  expect_error(fastnorm_steady_rolling(&grid, &material, pressure, 0.3, &creepage, 1, &bad_stop, traction_x, traction_y,
+                                       &rolling),
+               "options.stop");
+  expect_error(fastnorm_steady_rolling(&grid, &material, pressure, 0.3, &creepage, 1, &bad_sweeps, traction_x,
+                                       traction_y, &rolling),
+               "options.max_sweeps");
+  expect_error(fastnorm_steady_rolling(&grid, &material, pressure, 0.3, &creepage, 1, &bad_tolerance, traction_x,
+                                       traction_y, &rolling),
+               "options.tolerance");
   free(h);
   free(pressure);
   free(traction_x);

@@ -188,6 +188,24 @@ static_assert(static_cast<int>(fastnorm::TableLookupStatus::ok) == FASTNORM_TABL
               static_cast<int>(fastnorm::TableLookupStatus::topology_change) == FASTNORM_TABLE_TOPOLOGY_CHANGE &&
               static_cast<int>(fastnorm::TableLookupStatus::failed_case) == FASTNORM_TABLE_FAILED_CASE);
 
+/// The C options as the exact tangential path's, a 0 field keeping the default.
+fastnorm::TangentialOptions<double> tangential_options_of(const fastnorm_tangential_options* options) {
+  fastnorm::TangentialOptions<double> value;
+  if (!options) return value;
+  FASTNORM_CHECK(options->stop == FASTNORM_STOP_LARGEST_CHANGE || options->stop == FASTNORM_STOP_RMS_CHANGE,
+                 "options.stop must be FASTNORM_STOP_LARGEST_CHANGE (0) or FASTNORM_STOP_RMS_CHANGE (1), not " +
+                     std::to_string(options->stop));
+  FASTNORM_CHECK(options->max_sweeps >= 0, "options.max_sweeps must be >= 0 (0: the default), not " +
+                                               std::to_string(options->max_sweeps));
+  value.stop = options->stop == FASTNORM_STOP_RMS_CHANGE ? fastnorm::TangentialStop::rms_change
+                                                         : fastnorm::TangentialStop::largest_change;
+  if (options->max_sweeps > 0) value.max_sweeps = options->max_sweeps;
+  FASTNORM_CHECK(options->tolerance == 0 || (options->tolerance > 0 && options->tolerance < 1),
+                 fastnorm::describe("options.tolerance must lie in (0, 1) (0: the default)", options->tolerance));
+  if (options->tolerance != 0) value.tolerance = options->tolerance;
+  return value;
+}
+
 }  // namespace
 
 extern "C" {
@@ -258,8 +276,9 @@ int fastnorm_normal_stiffness(fastnorm_solver* solver, double* stiffness) {
 }
 
 int fastnorm_steady_rolling(const fastnorm_grid* grid, const fastnorm_material* material, const double* pressure,
-                            double friction, const fastnorm_creepage* creepage, int rolling, double* traction_x,
-                            double* traction_y, fastnorm_tangential_result* result) {
+                            double friction, const fastnorm_creepage* creepage, int rolling,
+                            const fastnorm_tangential_options* options, double* traction_x, double* traction_y,
+                            fastnorm_tangential_result* result) {
   return guarded("fastnorm_steady_rolling", [&] {
     for (const auto& [pointer, name] : {std::pair<const void*, const char*>{pressure, "pressure"},
                                         {creepage, "creepage"}, {traction_x, "traction_x"},
@@ -282,7 +301,8 @@ int fastnorm_steady_rolling(const fastnorm_grid* grid, const fastnorm_material* 
     value.spin_centre_y = creepage->spin_centre_y;
     const auto answer = fastnorm::solve_steady_rolling(
         grid_value, material_of(material), normal, friction, value,
-        rolling == 1 ? fastnorm::RollingDirection::positive_x : fastnorm::RollingDirection::negative_x);
+        rolling == 1 ? fastnorm::RollingDirection::positive_x : fastnorm::RollingDirection::negative_x,
+        tangential_options_of(options));
     Eigen::Map<Eigen::VectorXd>(traction_x, grid_value.size()) = answer.traction_x;
     Eigen::Map<Eigen::VectorXd>(traction_y, grid_value.size()) = answer.traction_y;
     *result = tangential_to_c(answer);

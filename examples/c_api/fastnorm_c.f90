@@ -21,6 +21,7 @@ module fastnorm_c
   integer(c_int), parameter :: fastnorm_step_not_solved = 0, fastnorm_step_ok = 1, fastnorm_step_patch_failed = 2
   ! The fast tangential methods of the wheelset model.
   integer(c_int), parameter :: fastnorm_strip_theory = 0, fastnorm_fastsim = 1
+  integer(c_int), parameter :: fastnorm_stop_largest_change = 0, fastnorm_stop_rms_change = 1
   ! How an equilibrium search ended.
   integer(c_int), parameter :: fastnorm_equilibrium_not_solved = 0, fastnorm_equilibrium_converged = 1, &
                                fastnorm_equilibrium_lost_contact = 2, fastnorm_equilibrium_not_converged = 3, &
@@ -57,6 +58,11 @@ module fastnorm_c
   type, bind(c) :: fastnorm_tangential_result
     integer(c_int) :: status, sweeps, adhesion_elements, slip_elements
     real(c_double) :: force_x, force_y, spin_moment, frictional_power_per_speed, residual
+  end type
+  type, bind(c) :: fastnorm_tangential_options
+    integer(c_int) :: stop        ! fastnorm_stop_largest_change (0, default) or fastnorm_stop_rms_change
+    integer(c_int) :: max_sweeps  ! 0: the default
+    real(c_double) :: tolerance   ! 0: the default
   end type
 
   type, bind(c) :: fastnorm_wheelset_options
@@ -151,14 +157,16 @@ module fastnorm_c
       real(c_double), intent(out) :: stiffness
     end function
     integer(c_int) function fastnorm_steady_rolling(grid, material, pressure, friction, creepage, rolling, &
-                                                     traction_x, traction_y, result) bind(c)
-      import :: c_int, c_double, fastnorm_grid, fastnorm_material, fastnorm_creepage, fastnorm_tangential_result
+                                                     options, traction_x, traction_y, result) bind(c)
+      import :: c_int, c_double, c_ptr, fastnorm_grid, fastnorm_material, fastnorm_creepage, &
+                fastnorm_tangential_result
       type(fastnorm_grid), intent(in) :: grid
       type(fastnorm_material), intent(in) :: material
       real(c_double), intent(in) :: pressure(*)
       real(c_double), value :: friction
       type(fastnorm_creepage), intent(in) :: creepage
       integer(c_int), value :: rolling
+      type(c_ptr), value :: options  ! c_loc of a fastnorm_tangential_options, or c_null_ptr
       real(c_double), intent(out) :: traction_x(*), traction_y(*)
       type(fastnorm_tangential_result), intent(out) :: result
     end function

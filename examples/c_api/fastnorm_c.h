@@ -122,15 +122,28 @@ typedef struct fastnorm_tangential_result {
   double force_x, force_y;    /* on the rail (N); a positive xi gives a negative force_x */
   double spin_moment;         /* sum dA (x p_y - y p_x) about the grid's origin (N m) */
   double frictional_power_per_speed; /* sum dA |p||s| over the slip area (N); times the speed: W */
-  double residual;            /* the last sweep's largest traction change / (mu max p_n) */
+  double residual;            /* the last sweep's traction changes by the stopping rule: the
+                                 largest / (mu max p_n), or their rms / the tractions' */
 } fastnorm_tangential_result;
+/* When the sweeps stop (docs/tangential.md §7). */
+enum { FASTNORM_STOP_LARGEST_CHANGE = 0, FASTNORM_STOP_RMS_CHANGE = 1 };
+typedef struct fastnorm_tangential_options {
+  int stop;          /* FASTNORM_STOP_LARGEST_CHANGE (default): no traction changes by more than
+                        tolerance * mu max p_n in a sweep; FASTNORM_STOP_RMS_CHANGE: CONTACT's
+                        rule, the rms of a sweep's traction changes at most tolerance times the
+                        tractions' (its EPS: 1e-5 in its wheel-rail runs) */
+  int max_sweeps;    /* 0: the default, 2000 */
+  double tolerance;  /* in (0, 1); 0: the default, 1e-9 */
+} fastnorm_tangential_options;
 /* Steady rolling with Coulomb friction (mu > 0) on the normal pressures `pressure` (Pa, the
  * contact area where they are positive, as a solve wrote them) of a grid and material;
- * rolling: +1 the contact moves towards +x (CONTACT's chi = 0), -1 towards -x. Writes the
- * tractions on the rail (Pa) into traction_x and traction_y (grid-sized). */
+ * rolling: +1 the contact moves towards +x (CONTACT's chi = 0), -1 towards -x; options may
+ * be NULL (the defaults). Writes the tractions on the rail (Pa) into traction_x and
+ * traction_y (grid-sized). */
 FASTNORM_C_API int fastnorm_steady_rolling(const fastnorm_grid* grid, const fastnorm_material* material,
                                            const double* pressure, double friction, const fastnorm_creepage* creepage,
-                                           int rolling, double* traction_x, double* traction_y,
+                                           int rolling, const fastnorm_tangential_options* options,
+                                           double* traction_x, double* traction_y,
                                            fastnorm_tangential_result* result);
 
 /* .case files (docs/case-format.md). */

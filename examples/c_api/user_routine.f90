@@ -146,7 +146,7 @@ contains
       error stop "normal: " // fastnorm_string(fastnorm_last_error())
     call fastnorm_solver_destroy(norm)
     if (fastnorm_steady_rolling(grid, material, pressure, 0.3d0, fastnorm_creepage(0d0, -6.25d-4, 0.625d0, 0d0, 0d0), &
-                                1_c_int, traction_x, traction_y, rolling) /= fastnorm_ok) &
+                                1_c_int, c_null_ptr, traction_x, traction_y, rolling) /= fastnorm_ok) &
       error stop "steady rolling: " // fastnorm_string(fastnorm_last_error())
     print '(a, es12.5, a, es12.5, a, i4, a, i4)', "steady rolling: Fs = ", rolling%force_y, " N, Mz = ", &
       rolling%spin_moment, " N m, adhesion ", rolling%adhesion_elements, ", slip ", rolling%slip_elements

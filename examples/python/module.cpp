@@ -146,15 +146,32 @@ fastnorm::Creepage<double> creepage_of(double creepage_x, double creepage_y, dou
   return {creepage_x, creepage_y, spin, spin_centre_x, spin_centre_y};
 }
 
+/// The exact tangential path's options: stop "largest_change" or "rms_change" (CONTACT's),
+/// None keeping a default.
+fastnorm::TangentialOptions<double> tangential_options_of(const std::string& stop, std::optional<double> tolerance,
+                                                          std::optional<int> max_sweeps) {
+  FASTNORM_CHECK(stop == "largest_change" || stop == "rms_change",
+                 "stop must be 'largest_change' or 'rms_change', not '" + stop + "'");
+  fastnorm::TangentialOptions<double> options;
+  options.stop = stop == "rms_change" ? fastnorm::TangentialStop::rms_change : fastnorm::TangentialStop::largest_change;
+  if (tolerance) options.tolerance = *tolerance;
+  if (max_sweeps) options.max_sweeps = *max_sweeps;
+  options.validate();
+  return options;
+}
+
 PyTangentialSolution solve_steady_rolling(const Grid& grid, const Material& material, const PySolution& normal,
                                           double friction, double creepage_x, double creepage_y, double spin,
-                                          double spin_centre_x, double spin_centre_y, const std::string& rolling) {
+                                          double spin_centre_x, double spin_centre_y, const std::string& rolling,
+                                          const std::string& stop, std::optional<double> tolerance,
+                                          std::optional<int> max_sweeps) {
   const auto creepage = creepage_of(creepage_x, creepage_y, spin, spin_centre_x, spin_centre_y);
   const auto direction = direction_of(rolling);
+  const auto options = tangential_options_of(stop, tolerance, max_sweeps);
   fastnorm::TangentialSolution<double> answer;
   {
     py::gil_scoped_release release;
-    answer = fastnorm::solve_steady_rolling(grid, material, normal.solution, friction, creepage, direction);
+    answer = fastnorm::solve_steady_rolling(grid, material, normal.solution, friction, creepage, direction, options);
   }
   return to_python(grid, answer);
 }
@@ -581,11 +598,15 @@ void bind_tangential(py::module_& m) {
       });
   m.def("solve_steady_rolling", &solve_steady_rolling, "grid"_a, "material"_a, "normal"_a, py::kw_only(),
         "friction"_a, "creepage_x"_a = 0.0, "creepage_y"_a = 0.0, "spin_per_m"_a = 0.0, "spin_centre_x_m"_a = 0.0,
-        "spin_centre_y_m"_a = 0.0, "rolling"_a = "+x",
+        "spin_centre_y_m"_a = 0.0, "rolling"_a = "+x", "stop"_a = "largest_change", "tolerance"_a = py::none(),
+        "max_sweeps"_a = py::none(),
         "Steady rolling with Coulomb friction on the normal solution `normal` (a Solution on `grid`), CONTACT's "
         "conventions: creepages of the rail (body 1) against the wheel, rigid slip (xi - phi (y - y0), eta + phi "
         "(x - x0)) about the spin centre (x0, y0) in the grid's coordinates, rolling towards '+x' or '-x' "
-        "(docs/tangential.md).");
+        "(docs/tangential.md). The sweeps stop by `stop`: 'largest_change' (no traction changing by more than "
+        "tolerance * mu max p_n, default 1e-9) or 'rms_change' (CONTACT's rule: the rms of a sweep's traction "
+        "changes at most tolerance times the tractions', its EPS; 1e-5 in its wheel-rail runs), or after "
+        "max_sweeps (default 2000).");
 }
 
 void bind_case_files(py::module_& m) {

@@ -138,36 +138,47 @@ TEST_CASE("The C API's wheelset model gives the C++ model's creep forces bit for
 
 TEST_CASE("The C API's steady rolling is the C++ solver's bit for bit", "[cli][c_api][tangential]") {
   // A wheel-rail patch of the model (elliptic pressures), rolled towards -x with all three
-  // creepages about a spin centre off the grid's origin: the exact path through both.
+  // creepages about a spin centre off the grid's origin: the exact path through both, with
+  // the default options (NULL) and with CONTACT's stopping rule.
   auto model = cpp_model("elliptic", 24);
   const auto& patch = model.evaluate(pressed(model, 3e-3, 0, 0.1e-3)).wheels[1].patches.at(0);
   const auto& grid = patch.patch.grid;
   const fastnorm::Creepage<double> creepage{1e-3, -5e-4, 0.4, 1e-3, -2e-4};
   const auto material = model.options().material;
-  const auto cpp = fastnorm::solve_steady_rolling(grid, material, patch.solution, 0.3, creepage,
-                                                  fastnorm::RollingDirection::negative_x);
-  REQUIRE(cpp.ok());
-
   const fastnorm_grid c_grid = {static_cast<int>(grid.mx()), static_cast<int>(grid.my()), grid.dx(), grid.dy(),
                                 grid.x0(), grid.y0()};
   const fastnorm_material c_material = {material.young_modulus(1), material.poisson_ratio(1),
                                         material.young_modulus(2), material.poisson_ratio(2)};
   const fastnorm_creepage c_creepage = {creepage.longitudinal, creepage.lateral, creepage.spin,
                                         creepage.spin_centre_x, creepage.spin_centre_y};
-  std::vector<double> traction_x(static_cast<std::size_t>(grid.size())), traction_y(traction_x.size());
-  fastnorm_tangential_result result{};
-  REQUIRE_C_OK(fastnorm_steady_rolling(&c_grid, &c_material, patch.solution.pressure.data(), 0.3, &c_creepage, -1,
-                                       traction_x.data(), traction_y.data(), &result));
-  CHECK(result.status == FASTNORM_CONVERGED);
-  CHECK(result.force_x == cpp.force_x);
-  CHECK(result.force_y == cpp.force_y);
-  CHECK(result.spin_moment == cpp.spin_moment);
-  CHECK(result.frictional_power_per_speed == cpp.frictional_power_per_speed);
-  CHECK(result.adhesion_elements == cpp.adhesion_elements);
-  CHECK(result.slip_elements == cpp.slip_elements);
-  CHECK(result.sweeps == cpp.sweeps);
-  CHECK(Eigen::Map<const Eigen::VectorXd>(traction_x.data(), grid.size()) == cpp.traction_x);
-  CHECK(Eigen::Map<const Eigen::VectorXd>(traction_y.data(), grid.size()) == cpp.traction_y);
+  const fastnorm_tangential_options contact_rule = {FASTNORM_STOP_RMS_CHANGE, 0, 1e-5};
+  for (const fastnorm_tangential_options* c_options : {static_cast<const fastnorm_tangential_options*>(nullptr),
+                                                       &contact_rule}) {
+    INFO((c_options ? "CONTACT's rule" : "default options"));
+    fastnorm::TangentialOptions<double> options;
+    if (c_options) {
+      options.stop = fastnorm::TangentialStop::rms_change;
+      options.tolerance = c_options->tolerance;
+    }
+    const auto cpp = fastnorm::solve_steady_rolling(grid, material, patch.solution, 0.3, creepage,
+                                                    fastnorm::RollingDirection::negative_x, options);
+    REQUIRE(cpp.ok());
+    std::vector<double> traction_x(static_cast<std::size_t>(grid.size())), traction_y(traction_x.size());
+    fastnorm_tangential_result result{};
+    REQUIRE_C_OK(fastnorm_steady_rolling(&c_grid, &c_material, patch.solution.pressure.data(), 0.3, &c_creepage, -1,
+                                         c_options, traction_x.data(), traction_y.data(), &result));
+    CHECK(result.status == FASTNORM_CONVERGED);
+    CHECK(result.force_x == cpp.force_x);
+    CHECK(result.force_y == cpp.force_y);
+    CHECK(result.spin_moment == cpp.spin_moment);
+    CHECK(result.frictional_power_per_speed == cpp.frictional_power_per_speed);
+    CHECK(result.adhesion_elements == cpp.adhesion_elements);
+    CHECK(result.slip_elements == cpp.slip_elements);
+    CHECK(result.sweeps == cpp.sweeps);
+    CHECK(result.residual == cpp.residual);
+    CHECK(Eigen::Map<const Eigen::VectorXd>(traction_x.data(), grid.size()) == cpp.traction_x);
+    CHECK(Eigen::Map<const Eigen::VectorXd>(traction_y.data(), grid.size()) == cpp.traction_y);
+  }
 }
 
 TEST_CASE("The C API's iteration budget and the work it reports are the C++ model's", "[cli][c_api]") {

@@ -2,6 +2,7 @@
 #include <unistd.h>
 
 #include <catch2/catch.hpp>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -197,6 +198,21 @@ TEST_CASE("fastnorm-solve --friction adds the steady-rolling creep forces", "[cl
   const auto without_friction = run_solver(input.string() + " --spin 0.5");
   CHECK(without_friction.status == 2);
   CHECK_THAT(without_friction.output, Contains("--spin needs --friction"));
+  // CONTACT's stopping rule (docs/tangential.md §7): fewer sweeps, the same areas, the forces
+  // within 1e-6 μFn of the default rule's.
+  const auto contact_rule =
+      run_solver(input.string() + " --quiet --friction 0.3 --creepage-x 1e-3 --creepage-y 4e-4 --contact-eps 1e-5");
+  REQUIRE(contact_rule.status == 0);
+  INFO(contact_rule.output);
+  CHECK(field(contact_rule.output, "sweeps") < field(forward.output, "sweeps"));
+  CHECK(field(contact_rule.output, "nadh") == field(forward.output, "nadh"));
+  CHECK(field(contact_rule.output, "nslip") == field(forward.output, "nslip"));
+  // (plus the two printed values' rounding to 6 digits, each within 5e-7 of |fx|)
+  const double mu_fn = 0.3 * field(forward.output, "fn"), printed = std::abs(field(forward.output, "fx"));
+  CHECK(std::abs(field(contact_rule.output, "fx") - field(forward.output, "fx")) <= 1e-6 * mu_fn + 1e-6 * printed);
+  const auto strip_with_eps = run_solver(input.string() + " --friction 0.3 --tangential strip --contact-eps 1e-5");
+  CHECK(strip_with_eps.status == 2);
+  CHECK_THAT(strip_with_eps.output, Contains("--contact-eps needs --tangential exact"));
 }
 
 TEST_CASE("fastnorm-solve rolls a case's tangential line, and --write-case keeps it", "[cli][tangential]") {

@@ -39,6 +39,27 @@ def test_steady_rolling_gives_contacts_large_spin_case():
     assert "TangentialSolution(status='converged'" in repr(answer)
 
 
+def test_steady_rolling_stops_by_contacts_rule_when_asked():
+    # CONTACT's stopping rule at its EPS of 1e-5 (docs/tangential.md §7): fewer sweeps, the same
+    # areas, forces within 1e-6 mu Fn of the default rule's; a sweep limit met first is reported.
+    grid, material, normal = hertz_problem()
+    creepage = dict(friction=0.3, creepage_y=-6.25e-4, spin_per_m=0.625)
+    tight = fastnorm.solve_steady_rolling(grid, material, normal, **creepage)
+    loose = fastnorm.solve_steady_rolling(grid, material, normal, **creepage, stop="rms_change", tolerance=1e-5)
+    assert loose.ok and loose.residual <= 1e-5
+    assert loose.sweeps < tight.sweeps
+    assert (loose.adhesion_elements, loose.slip_elements) == (tight.adhesion_elements, tight.slip_elements)
+    assert abs(loose.force_y_n - tight.force_y_n) <= 1e-6 * 0.3 * 82e3
+    limited = fastnorm.solve_steady_rolling(grid, material, normal, **creepage, max_sweeps=3)
+    assert limited.status == "iteration limit" and limited.sweeps == 3
+    with pytest.raises(fastnorm.FastnormError, match="stop"):
+        fastnorm.solve_steady_rolling(grid, material, normal, **creepage, stop="rms")
+    with pytest.raises(fastnorm.FastnormError, match="tolerance"):
+        fastnorm.solve_steady_rolling(grid, material, normal, **creepage, tolerance=2.0)
+    with pytest.raises(fastnorm.FastnormError, match="max_sweeps"):
+        fastnorm.solve_steady_rolling(grid, material, normal, **creepage, max_sweeps=0)
+
+
 def test_steady_rolling_names_bad_input():
     grid, material, normal = hertz_problem()
     with pytest.raises(fastnorm.FastnormError, match="friction"):
