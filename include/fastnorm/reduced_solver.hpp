@@ -30,7 +30,7 @@ class ReducedSolver;
 /// What a reduced solver keeps between solves: the starting set, the Galerkin assemblies
 /// and factors of the sets of its last solve (the next solve reuses those it meets again),
 /// the basis blocks, and the loop's storage. One per thread; it may move between solvers
-/// (what belonged to another solver is dropped).
+/// (what belonged to another solver is dropped, its storage kept).
 template <typename Scalar = double>
 class ReducedWorkspace {
  public:
@@ -41,8 +41,7 @@ class ReducedWorkspace {
   /// The next solve is cold: no starting set, no assemblies to reuse (storage kept).
   void forget() {
     start_.clear();
-    memory_.recycle(memory_.path);
-    memory_.recycle(memory_.last_path);
+    memory_.forget();
   }
   /// Storage for the next solve's answer: a Solution no longer needed (e.g. the previous
   /// answer of a time loop), handed back so that the next solve fills it instead of
@@ -103,8 +102,8 @@ class ReducedSolver : public detail::SolverBase<ReducedSolver<Basis, Scalar>, Re
   Solution<Scalar> solve(const Eigen::Ref<const Vector>& undeformed_distance, const Loading<Scalar>& loading,
                          Workspace& workspace) const {
     workspace.start_.check(grid().size());
-    if (workspace.owner_ != id_) {  // blocks and assemblies of another basis or grid
-      workspace.memory_ = detail::GalerkinMemory<Scalar>();
+    if (workspace.owner_ != id_) {  // assemblies of another basis or grid: their storage is kept
+      workspace.memory_.forget();
       // Two segments a strip, and 16 sets a solve: an active-set loop's usual iterations.
       workspace.memory_.reserve(2 * static_cast<std::size_t>(grid().my()), 16);
       workspace.loop_.start_on_grid(static_cast<std::size_t>(grid().size()));

@@ -105,6 +105,32 @@ TEST_CASE("With the last result recycled, a repeated sequence allocates nothing"
   }
 }
 
+TEST_CASE("A reduced solver's workspace keeps its storage when it moves to another grid's solver",
+          "[sequence][allocation]") {
+  // What a time-loop model does when a patch changes its grid size and takes a spare
+  // workspace of another size (WheelsetContact; docs/performance.md §8): the Galerkin
+  // assemblies of the other solver are forgotten but their storage serves the new one.
+  const fastnorm::Grid<> large(40, 40, 2.5e-4, 2.5e-4, -4.875e-3, -4.875e-3);
+  const fastnorm::Grid<> small(32, 32, 2.5e-4, 2.5e-4, -3.875e-3, -3.875e-3);
+  const fastnorm::ReducedSolver<fastnorm::EllipticBasis> on_large(large, steel);
+  const auto on_small = on_large.for_grid(small);
+  REQUIRE(on_large.build_tables());  // shared by both: no table is built inside a solve
+  const auto loading = fastnorm::Loading<>::approach();
+  fastnorm::ReducedWorkspace<> moving, other;
+  for (const double tilt : {0.0, 1e-3}) on_large.solve(indenter(large, tilt), loading, moving);
+  const Eigen::VectorXd h_small = indenter(small, 0.0);
+  // A result of the small grid's size to recycle, so that the answer allocates nothing either.
+  moving.recycle(on_small.solve(h_small, loading, other));
+  fastnorm::Solution<> moved;
+  const long allocations = allocations_of([&] { moved = on_small.solve(h_small, loading, moving); });
+  REQUIRE(moved.status == fastnorm::Status::converged);
+  CHECK(moved.contact_count() > 0);
+  CHECK(allocations == 0);
+  // And it answers as a workspace that never met the large grid, to the last bit.
+  fastnorm::ReducedWorkspace<> fresh;
+  CHECK(on_small.solve(h_small, loading, fresh).pressure == moved.pressure);
+}
+
 TEST_CASE("The wheelset contact model allocates nothing per step after warm-up", "[sequence][allocation]") {
   namespace wr = fastnorm::wheelrail;
   const wr::Track track;

@@ -89,6 +89,12 @@ struct GalerkinMemory {
     }
     assemblies.clear();
   }
+  /// No set to look up any more (another solver's, or a cold start): every assembly
+  /// becomes storage to reuse.
+  void forget() {
+    recycle(path);
+    recycle(last_path);
+  }
   /// Before a solve: the previous solve's sets become the ones to look up.
   void next_problem() {
     recycle(last_path);

@@ -75,12 +75,25 @@ class SolverCache {
   const Solver& solver(std::size_t s) const { return slots_[s].solver; }
   std::size_t size() const { return slots_.size(); }
 
-  /// A spare workspace of solver `s`, or a new one.
-  Workspace take_workspace(std::size_t s) {
-    auto& spare = slots_[s].spare;
-    if (spare.empty()) return Workspace();
-    Workspace workspace = std::move(spare.back());
-    spare.pop_back();
+  /// A spare workspace of solver `s`; else, if `across_sizes`, with what it kept forgotten,
+  /// one of the largest grid's solver that has a spare (a workspace may move between
+  /// solvers: a reduced solver's storage keeps its capacity and serves the new one, where
+  /// NORM's and CG's grid-sized vectors would be allocated again); else a new one.
+  Workspace take_workspace(std::size_t s, bool across_sizes) {
+    std::size_t from = s;
+    if (slots_[s].spare.empty()) {
+      if (!across_sizes) return Workspace();
+      for (std::size_t other = 0; other < slots_.size(); ++other) {
+        if (!slots_[other].spare.empty() &&
+            (from == s || slots_[other].solver.grid().size() > slots_[from].solver.grid().size())) {
+          from = other;
+        }
+      }
+      if (from == s) return Workspace();
+    }
+    Workspace workspace = std::move(slots_[from].spare.back());
+    slots_[from].spare.pop_back();
+    if (from != s) workspace.forget();
     return workspace;
   }
 

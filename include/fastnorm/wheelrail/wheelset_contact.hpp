@@ -361,13 +361,14 @@ class WheelsetContact {
   /// onto its grid (a pure shift on the lattice); cold when it has none.
   void start_from(const std::vector<std::size_t>& predecessors, std::vector<State>& previous, State& state) {
     // The workspace follows the patch while its grid keeps its size; otherwise the patch
-    // takes a spare one of its new size's solver (the storage of that size, no allocation).
+    // takes a spare one of its new size's solver (the storage of that size, no allocation),
+    // or for a reduced solver a spare of another size (its storage reused).
     state.solver = solvers_.index_for(state.grid, options_.solver, options_.material);
     if (!predecessors.empty() && previous[predecessors.front()].solver == state.solver) {
       state.workspace = std::move(previous[predecessors.front()].workspace);
       previous[predecessors.front()].solver = detail::no_solver;  // its workspace moved on
     } else {
-      state.workspace = solvers_.take_workspace(state.solver);
+      state.workspace = solvers_.take_workspace(state.solver, options_.solver.is_reduced());
       // A new workspace's start gets room for its grid's sets (a spare has it already).
       state.workspace.start().reserve(static_cast<std::size_t>(state.grid.size()));
     }
