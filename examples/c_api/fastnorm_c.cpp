@@ -187,6 +187,8 @@ static_assert(static_cast<int>(fastnorm::TableLookupStatus::ok) == FASTNORM_TABL
               static_cast<int>(fastnorm::TableLookupStatus::out_of_range) == FASTNORM_TABLE_OUT_OF_RANGE &&
               static_cast<int>(fastnorm::TableLookupStatus::topology_change) == FASTNORM_TABLE_TOPOLOGY_CHANGE &&
               static_cast<int>(fastnorm::TableLookupStatus::failed_case) == FASTNORM_TABLE_FAILED_CASE);
+static_assert(static_cast<int>(fastnorm::TangentialStop::largest_change) == FASTNORM_STOP_LARGEST_CHANGE &&
+              static_cast<int>(fastnorm::TangentialStop::rms_change) == FASTNORM_STOP_RMS_CHANGE);
 
 /// The C options as the exact tangential path's, a 0 field keeping the default.
 fastnorm::TangentialOptions<double> tangential_options_of(const fastnorm_tangential_options* options) {
@@ -197,8 +199,7 @@ fastnorm::TangentialOptions<double> tangential_options_of(const fastnorm_tangent
                      std::to_string(options->stop));
   FASTNORM_CHECK(options->max_sweeps >= 0, "options.max_sweeps must be >= 0 (0: the default), not " +
                                                std::to_string(options->max_sweeps));
-  value.stop = options->stop == FASTNORM_STOP_RMS_CHANGE ? fastnorm::TangentialStop::rms_change
-                                                         : fastnorm::TangentialStop::largest_change;
+  value.stop = static_cast<fastnorm::TangentialStop>(options->stop);
   if (options->max_sweeps > 0) value.max_sweeps = options->max_sweeps;
   FASTNORM_CHECK(options->tolerance == 0 || (options->tolerance > 0 && options->tolerance < 1),
                  fastnorm::describe("options.tolerance must lie in (0, 1) (0: the default)", options->tolerance));
