@@ -3,7 +3,7 @@ sweep on two workers against one, and the accuracy of table lookups at cell midp
 direct evaluation. A benchmark, not a test: it prints figures.
 
     python3 table_benchmark.py throughput [--repeats 3] [--elements 30]
-    python3 table_benchmark.py accuracy [--queries 300] [--elements 40] [--store DIR]
+    python3 table_benchmark.py accuracy [--queries 300] [--elements 40] [--yaws 3] [--loads 3] [--store DIR]
 
 throughput: 400 equilibria (y -6…6 mm, 4 yaws, one load, CG) built serially in this process,
 by a process pool of two workers, by a Dask LocalCluster of two single-thread workers started
@@ -12,12 +12,13 @@ by the build (its start-up timed) and by the same on a cluster already running (
 ratios to serial.
 
 accuracy: a table over y -4…4 mm by 0.25 mm and 4…7 mm by 0.05 mm on either side (where one
-wheel is on its flange root or flange), yaw 0, 4, 8 mrad, loads 150, 200, 250 kN (CG); at
+wheel is on its flange root or flange), yaw 0…8 mrad (--yaws nodes, 3: by 4 mrad) and load
+150…250 kN (--loads nodes, 3: by 50 kN) evenly spaced (CG); at
 random cell midpoints in all three axes a direct equilibrium beside the PCHIP and
 multilinear lookups; per region (tread |y| < 4 mm, flange)
 the largest, 95th-percentile and median differences: normal force per patch in units of the
-table's largest normal force, contact angle in rad, largest pressure relative. Midpoints whose
-cell the topology guard refuses are counted, not compared.
+table's largest normal force, contact angle in rad, largest pressure relative, and where the
+largest lies. Midpoints whose cell the topology guard refuses are counted, not compared.
 """
 
 import argparse
@@ -57,11 +58,12 @@ def throughput(repeats, elements):
               f"spread={max(values) / min(values):.2f}")
 
 
-def accuracy(queries, elements, store):
+def accuracy(queries, elements, yaws, loads, store):
     spec = {"lateral_shift_m": [{"start": -7e-3, "stop": -4e-3, "step": 0.05e-3},
                                 {"start": -4e-3, "stop": 4e-3, "step": 0.25e-3},
                                 {"start": 4e-3, "stop": 7e-3, "step": 0.05e-3}],
-            "yaw_rad": [0.0, 4e-3, 8e-3], "load_n": [1.5e5, 2e5, 2.5e5], "solver": "cg", "elements": elements,
+            "yaw_rad": [float(v) for v in np.linspace(0.0, 8e-3, yaws)],
+            "load_n": [float(v) for v in np.linspace(1.5e5, 2.5e5, loads)], "solver": "cg", "elements": elements,
             "chunk_size": 20}
     store = store or tempfile.mkdtemp(prefix="fastnorm-table-accuracy-")
     tables.build(spec, store, executor="process", workers=2, progress=False)
@@ -75,6 +77,7 @@ def accuracy(queries, elements, store):
     rng = np.random.default_rng(1)
     differences = {(region, how): {"normal_force": [], "contact_angle": [], "max_pressure": []}
                    for region in ("tread", "flange") for how in ("pchip", "multilinear")}
+    largest_at = {}  # (region, how, output) -> (difference, where)
     guarded = 0
     for _ in range(queries):
         i, k, m = (int(rng.integers(len(axis) - 1)) for axis in axes)
@@ -97,11 +100,17 @@ def accuracy(queries, elements, store):
                     d["normal_force"].append(abs(at["normal_force"] - patch.normal_force_n) / largest_force)
                     d["contact_angle"].append(abs(at["contact_angle"] - patch.contact_angle_rad))
                     d["max_pressure"].append(abs(at["max_pressure"] / patch.max_pressure_pa - 1))
-    print(f"accuracy queries={queries} elements={elements} guarded={guarded} largest_force_n={largest_force:.6g}")
+                    for name, values in d.items():
+                        if values[-1] >= largest_at.get((region, how, name), (-1.0, ""))[0]:
+                            largest_at[(region, how, name)] = (values[-1], f"y={y * 1e3:.4g}mm yaw={yaw * 1e3:.3g}mrad "
+                                                                           f"load={load / 1e3:.4g}kN {wheel}{p}")
+    print(f"accuracy queries={queries} elements={elements} yaws={yaws} loads={loads} guarded={guarded} "
+          f"largest_force_n={largest_force:.6g}")
     for (region, how), d in differences.items():
         for name, values in d.items():
             print(f"  {region} {how} {name}: patches={len(values)} max={max(values):.3g} "
-                  f"p95={np.percentile(values, 95):.3g} median={np.median(values):.3g}")
+                  f"p95={np.percentile(values, 95):.3g} median={np.median(values):.3g} "
+                  f"largest_at {largest_at[(region, how, name)][1]}")
 
 
 def main():
@@ -110,12 +119,14 @@ def main():
     parser.add_argument("--repeats", type=int, default=3)
     parser.add_argument("--queries", type=int, default=300)
     parser.add_argument("--elements", type=int, default=None, help="default 30 (throughput), 40 (accuracy)")
+    parser.add_argument("--yaws", type=int, default=3, help="accuracy: yaw nodes over 0…8 mrad")
+    parser.add_argument("--loads", type=int, default=3, help="accuracy: load nodes over 150…250 kN")
     parser.add_argument("--store", default=None, help="accuracy: build into (or reuse) this store")
     args = parser.parse_args()
     if args.what == "throughput":
         throughput(args.repeats, args.elements or 30)
     else:
-        accuracy(args.queries, args.elements or 40, args.store)
+        accuracy(args.queries, args.elements or 40, args.yaws, args.loads, args.store)
 
 
 if __name__ == "__main__":
