@@ -6,6 +6,8 @@
 #include <fastnorm/norm_solver.hpp>
 #include <fastnorm/reduced_solver.hpp>
 #include <limits>
+#include <utility>
+#include <vector>
 
 #include "support/random_gaps.hpp"
 #include "support/surfaces.hpp"
@@ -76,26 +78,33 @@ TEST_CASE("A rank-deficient basis takes the minimum-norm solve and the same answ
 TEST_CASE("A factorisation continued from a kept leading factor is the factorisation", "[reduced]") {
   // The incremental solve keeps the rows of the previous set's factor for its leading
   // unknowns and computes the rest (detail/in_place_cholesky.hpp): checked against Eigen's
-  // LLT of the whole matrix, for every size of the kept part.
+  // LLT of the whole matrix, for every size of the kept part; at 300 unknowns the update
+  // runs in several tiles of rows and columns (kept 70: 64, kept 150 and 299: 54 and 27).
+  for (const auto& [n, kept_sizes] : {std::pair<Eigen::Index, std::vector<Eigen::Index>>{23, {0, 1, 7, 22, 23}},
+                                      std::pair<Eigen::Index, std::vector<Eigen::Index>>{300, {70, 150, 299}}}) {
+    const Eigen::MatrixXd b = Eigen::MatrixXd::Random(n, n);
+    const Eigen::MatrixXd matrix = b * b.transpose() + Eigen::MatrixXd::Identity(n, n);
+    const Eigen::MatrixXd reference = Eigen::LLT<Eigen::MatrixXd>(matrix).matrixL();
+    const Eigen::VectorXd rhs = Eigen::VectorXd::LinSpaced(n, -1.0, 2.0);
+    for (const Eigen::Index kept : kept_sizes) {
+      fastnorm::detail::InPlaceCholesky<double> cholesky;
+      cholesky.resize(n);
+      cholesky.matrix() = matrix;
+      cholesky.matrix().topLeftCorner(kept, kept) = reference.topLeftCorner(kept, kept);
+      REQUIRE(cholesky.factorise_from(kept));
+      const Eigen::MatrixXd factor = cholesky.factor().triangularView<Eigen::Lower>();
+      INFO("n " << n << ", kept " << kept);
+      CHECK((factor - reference).cwiseAbs().maxCoeff() <= 1e-13 * reference.cwiseAbs().maxCoeff());
+      Eigen::VectorXd solution = rhs;
+      cholesky.solve_in_place(solution);
+      CHECK((matrix * solution - rhs).norm() <= 1e-12 * matrix.norm() * solution.norm());
+    }
+  }
+  // A trailing block that is not positive definite is reported, not factored.
   const Eigen::Index n = 23;
   const Eigen::MatrixXd b = Eigen::MatrixXd::Random(n, n);
   const Eigen::MatrixXd matrix = b * b.transpose() + Eigen::MatrixXd::Identity(n, n);
   const Eigen::MatrixXd reference = Eigen::LLT<Eigen::MatrixXd>(matrix).matrixL();
-  const Eigen::VectorXd rhs = Eigen::VectorXd::LinSpaced(n, -1.0, 2.0);
-  for (const Eigen::Index kept : {0, 1, 7, 22, 23}) {
-    fastnorm::detail::InPlaceCholesky<double> cholesky;
-    cholesky.resize(n);
-    cholesky.matrix() = matrix;
-    cholesky.matrix().topLeftCorner(kept, kept) = reference.topLeftCorner(kept, kept);
-    REQUIRE(cholesky.factorise_from(kept));
-    const Eigen::MatrixXd factor = cholesky.factor().triangularView<Eigen::Lower>();
-    INFO("kept " << kept);
-    CHECK((factor - reference).cwiseAbs().maxCoeff() <= 1e-13 * reference.cwiseAbs().maxCoeff());
-    Eigen::VectorXd solution = rhs;
-    cholesky.solve_in_place(solution);
-    CHECK((matrix * solution - rhs).norm() <= 1e-12 * matrix.norm() * solution.norm());
-  }
-  // A trailing block that is not positive definite is reported, not factored.
   fastnorm::detail::InPlaceCholesky<double> cholesky;
   cholesky.resize(n);
   cholesky.matrix() = matrix;

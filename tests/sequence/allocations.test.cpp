@@ -8,6 +8,7 @@
 #if defined(FASTNORM_COUNT_MALLOC)
 
 #include <fastnorm/any_solver.hpp>
+#include <fastnorm/detail/in_place_cholesky.hpp>
 #include <fastnorm/hertz.hpp>
 #include <fastnorm/wheelrail.hpp>
 
@@ -129,6 +130,24 @@ TEST_CASE("A reduced solver's workspace keeps its storage when it moves to anoth
   // And it answers as a workspace that never met the large grid, to the last bit.
   fastnorm::ReducedWorkspace<> fresh;
   CHECK(on_small.solve(h_small, loading, fresh).pressure == moved.pressure);
+}
+
+TEST_CASE("A factor update past Eigen's stack limit allocates nothing", "[sequence][allocation]") {
+  // A polynomial basis' Galerkin system keeps the factor of ≈ 100–250 leading unknowns and
+  // updates the rest (detail/in_place_cholesky.hpp); Eigen's triangular solve and rank
+  // update of blocks that large pack them on the heap (about 4 200 allocations over the
+  // benchmark trajectory with polynomial-edge:4:1, docs/performance.md §8). In tiles they do not.
+  const Eigen::Index n = 300, kept = 200;
+  const Eigen::MatrixXd b = Eigen::MatrixXd::Random(n, n);
+  const Eigen::MatrixXd matrix = b * b.transpose() + Eigen::MatrixXd::Identity(n, n);
+  const Eigen::MatrixXd leading = Eigen::LLT<Eigen::MatrixXd>(matrix.topLeftCorner(kept, kept)).matrixL();
+  fastnorm::detail::InPlaceCholesky<double> cholesky;
+  cholesky.resize(n);
+  cholesky.matrix() = matrix;
+  cholesky.matrix().topLeftCorner(kept, kept) = leading;
+  bool factored = false;
+  CHECK(allocations_of([&] { factored = cholesky.factorise_from(kept); }) == 0);
+  CHECK(factored);
 }
 
 TEST_CASE("The wheelset contact model allocates nothing per step after warm-up", "[sequence][allocation]") {

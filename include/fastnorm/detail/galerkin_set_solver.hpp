@@ -406,7 +406,14 @@ class GalerkinSetSolver {
       }
       const bool source_identity = is_identity(source.count);
       auto times_basis = memory_.times_basis.resize(rows, q_s);
-      if (!source_identity) times_basis.noalias() = coupling * block_of(source.count);
+      if (!source_identity) {
+        // By 64 rows: Eigen packs a product's operands into a temporary that comes from the
+        // heap past 128 KB, as these (every target's rows at once) did (docs/performance.md §8).
+        for (Index first = 0; first < rows; first += 64) {
+          const Index count = std::min<Index>(64, rows - first);
+          times_basis.middleRows(first, count).noalias() = coupling.middleRows(first, count) * block_of(source.count);
+        }
+      }
       const auto half = source_identity ? coupling : times_basis;
       row = 0;
       for (std::size_t t : direct) {

@@ -6,6 +6,7 @@
 
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
+#include <algorithm>
 
 #include "fastnorm/detail/scratch_matrix.hpp"
 
@@ -46,12 +47,7 @@ class InPlaceCholesky {
   bool factorise_from(Index kept) {
     Eigen::Map<Matrix> values = storage_.view();
     const Index rest = values.rows() - kept;
-    if (kept > 0 && rest > 0) {
-      auto coupling = values.bottomLeftCorner(rest, kept);
-      values.topLeftCorner(kept, kept).template triangularView<Eigen::Lower>().transpose().template solveInPlace<
-          Eigen::OnTheRight>(coupling);
-      values.bottomRightCorner(rest, rest).template selfadjointView<Eigen::Lower>().rankUpdate(coupling, Scalar(-1));
-    }
+    if (kept > 0 && rest > 0) update_trailing(values, kept);
     Eigen::Ref<Matrix> trailing = values.bottomRightCorner(rest, rest);
     const Eigen::LLT<Eigen::Ref<Matrix>, Eigen::Lower> llt(trailing);  // in place: values now hold L
     factored_ = llt.info() == Eigen::Success;
@@ -75,6 +71,40 @@ class InPlaceCholesky {
   }
 
  private:
+  /// L21 = A21 L11⁻ᵀ and the lower triangle of A22 − L21 L21ᵀ in place, in tiles of at most
+  /// `tile` rows and columns. Eigen's blocked triangular solve and products pack their
+  /// operands into temporaries of up to kc × (the other size) values that come from the heap
+  /// once they pass its stack limit (128 KB), as they did here for the polynomial bases' ≈ 100
+  /// kept unknowns (docs/performance.md §8). Tiles of kept · tile ≤ 64 KB keep every packed
+  /// block on the stack, up to 1 024 kept unknowns (8-element tiles to 2 048 within the limit).
+  /// A system whose tiles are the whole blocks makes Eigen's two calls, as untiled.
+  static void update_trailing(Eigen::Map<Matrix>& values, Index kept) {
+    const Index rest = values.rows() - kept;
+    const Index tile = std::clamp<Index>(static_cast<Index>(65536 / sizeof(Scalar)) / kept, 8, 64);
+    const auto factor = values.topLeftCorner(kept, kept);
+    auto coupling = values.bottomLeftCorner(rest, kept);
+    // X L11ᵀ = A21 column block by column block: X_c = (A21_c − X_{<c} L_{c,<c}ᵀ) L_cc⁻ᵀ.
+    for (Index c = 0; c < kept; c += tile) {
+      const Index width = std::min(tile, kept - c);
+      const auto diagonal = factor.block(c, c, width, width).template triangularView<Eigen::Lower>().transpose();
+      for (Index r = 0; r < rest; r += tile) {
+        auto block = coupling.block(r, c, std::min(tile, rest - r), width);
+        if (c > 0) block.noalias() -= coupling.block(r, 0, block.rows(), c) * factor.block(c, 0, width, c).transpose();
+        diagonal.template solveInPlace<Eigen::OnTheRight>(block);
+      }
+    }
+    auto trailing = values.bottomRightCorner(rest, rest);
+    for (Index r = 0; r < rest; r += tile) {
+      const Index rows = std::min(tile, rest - r);
+      const auto row_factor = coupling.middleRows(r, rows);
+      trailing.block(r, r, rows, rows).template selfadjointView<Eigen::Lower>().rankUpdate(row_factor, Scalar(-1));
+      for (Index c = 0; c < r; c += tile) {
+        const Index width = std::min(tile, r - c);
+        trailing.block(r, c, rows, width).noalias() -= row_factor * coupling.middleRows(c, width).transpose();
+      }
+    }
+  }
+
   bool factored_ = false;
   ScratchMatrix<Scalar> storage_;
 };
