@@ -4,6 +4,7 @@ direct evaluation. A benchmark, not a test: it prints figures.
 
     python3 table_benchmark.py throughput [--repeats 3] [--elements 30]
     python3 table_benchmark.py accuracy [--queries 300] [--elements 40] [--yaws 3] [--loads 3] [--store DIR]
+    python3 table_benchmark.py flange-steps [--elements 40]
 
 throughput: 400 equilibria (y -6…6 mm, 4 yaws, one load, CG) built serially in this process,
 by a process pool of two workers, by a Dask LocalCluster of two single-thread workers started
@@ -19,6 +20,12 @@ multilinear lookups; per region (tread |y| < 4 mm, flange)
 the largest, 95th-percentile and median differences: normal force per patch in units of the
 table's largest normal force, contact angle in rad, largest pressure relative, and where the
 largest lies. Midpoints whose cell the topology guard refuses are counted, not compared.
+
+flange-steps: what the y step must be just before flange climb. Tables over y 5.9…6.5 mm by
+0.05, 0.025 and 0.0125 mm (yaw 4, 6, 8 mrad; load 150, 200, 250 kN); at every y midpoint,
+yaw and load at their nodes, PCHIP against a direct equilibrium: the largest normal force
+difference per patch (in units of 455 505 N, the accuracy table's largest patch force at 40
+elements) and contact angle difference (rad), and where each lies.
 """
 
 import argparse
@@ -113,18 +120,61 @@ def accuracy(queries, elements, yaws, loads, store):
                   f"largest_at {largest_at[(region, how, name)][1]}")
 
 
+def flange_steps(elements):
+    for step in (0.05e-3, 0.025e-3, 0.0125e-3):
+        spec = {"lateral_shift_m": [{"start": 5.9e-3, "stop": 6.5e-3, "step": step}], "yaw_rad": [4e-3, 6e-3, 8e-3],
+                "load_n": [1.5e5, 2e5, 2.5e5], "solver": "cg", "elements": elements, "chunk_size": 20}
+        store = tempfile.mkdtemp(prefix="fastnorm-table-flange-")
+        try:
+            tables.build(spec, store, executor="process", workers=2, progress=False)
+            table = tables.contact_table(store)
+            shifts = tables.read_spec(store)["lateral_shift_m"]
+        finally:
+            shutil.rmtree(store)
+        names = table.output_names
+        model = fastnorm.WheelsetContact(solver="cg", elements=elements)
+        largest = {"normal_force": (0.0, ""), "contact_angle": (0.0, "")}
+        compared = guarded = 0
+        for yaw in spec["yaw_rad"]:
+            for load in spec["load_n"]:
+                for i in range(len(shifts) - 1):
+                    y = (shifts[i] + shifts[i + 1]) / 2
+                    status, outputs = table.lookup(0, y, yaw, load, interpolation="pchip")
+                    if status != "ok":
+                        guarded += 1
+                        continue
+                    model.reset()
+                    direct = model.equilibrium(load_n=load, lateral_shift_m=y, yaw_rad=yaw)
+                    if direct.status != "converged":
+                        continue
+                    for w, wheel in enumerate(tables.WHEELS):
+                        for p, patch in enumerate(direct.wheels[w].patches[:tables.PATCHES]):
+                            compared += 1
+                            where = f"y={y * 1e3:.5g}mm yaw={yaw * 1e3:.3g}mrad load={load / 1e3:.4g}kN {wheel}{p}"
+                            for name, value, scale in (("normal_force", patch.normal_force_n, 455505.0),
+                                                       ("contact_angle", patch.contact_angle_rad, 1.0)):
+                                difference = abs(outputs[names.index(f"{name}_{wheel}{p}")] - value) / scale
+                                if difference > largest[name][0]:
+                                    largest[name] = (difference, where)
+        print(f"flange_steps elements={elements} step_mm={step * 1e3:.4g} compared={compared} guarded={guarded} "
+              f"normal_force_max={largest['normal_force'][0]:.3g} at {largest['normal_force'][1]} "
+              f"contact_angle_max={largest['contact_angle'][0]:.3g} at {largest['contact_angle'][1]}", flush=True)
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("what", choices=["throughput", "accuracy"])
+    parser.add_argument("what", choices=["throughput", "accuracy", "flange-steps"])
     parser.add_argument("--repeats", type=int, default=3)
     parser.add_argument("--queries", type=int, default=300)
-    parser.add_argument("--elements", type=int, default=None, help="default 30 (throughput), 40 (accuracy)")
+    parser.add_argument("--elements", type=int, default=None, help="default 30 (throughput), 40 (accuracy, flange-steps)")
     parser.add_argument("--yaws", type=int, default=3, help="accuracy: yaw nodes over 0…8 mrad")
     parser.add_argument("--loads", type=int, default=3, help="accuracy: load nodes over 150…250 kN")
     parser.add_argument("--store", default=None, help="accuracy: build into (or reuse) this store")
     args = parser.parse_args()
     if args.what == "throughput":
         throughput(args.repeats, args.elements or 30)
+    elif args.what == "flange-steps":
+        flange_steps(args.elements or 40)
     else:
         accuracy(args.queries, args.elements or 40, args.yaws, args.loads, args.store)
 
