@@ -65,6 +65,32 @@ def throughput(repeats, elements):
               f"spread={max(values) / min(values):.2f}")
 
 
+# What accuracy and flange-steps compare per patch, each as a difference from a direct
+# equilibrium: the normal force in units of a largest force, the angle in rad, pmax relative.
+COMPARED = ("normal_force", "contact_angle", "max_pressure")
+
+
+def _direct(model, y, yaw, load):
+    """The equilibrium at (y, yaw, load) from a reset model, or None (reported) if it did not converge."""
+    model.reset()
+    direct = model.equilibrium(load_n=load, lateral_shift_m=y, yaw_rad=yaw)
+    if direct.status != "converged":
+        print(f"  direct equilibrium at y={y:.6g} yaw={yaw:.3g} load={load:.6g}: {direct.status}")
+        return None
+    return direct
+
+
+def _differences(names, outputs, direct, largest_force, y, yaw, load):
+    """(where, {output: difference}) for each patch of `direct` against a lookup's `outputs`."""
+    for w, wheel in enumerate(tables.WHEELS):
+        for p, patch in enumerate(direct.wheels[w].patches[:tables.PATCHES]):
+            at = {name: outputs[names.index(f"{name}_{wheel}{p}")] for name in COMPARED}
+            yield (f"y={y * 1e3:.5g}mm yaw={yaw * 1e3:.3g}mrad load={load / 1e3:.4g}kN {wheel}{p}",
+                   {"normal_force": abs(at["normal_force"] - patch.normal_force_n) / largest_force,
+                    "contact_angle": abs(at["contact_angle"] - patch.contact_angle_rad),
+                    "max_pressure": abs(at["max_pressure"] / patch.max_pressure_pa - 1)})
+
+
 def accuracy(queries, elements, yaws, loads, store):
     spec = {"lateral_shift_m": [{"start": -7e-3, "stop": -4e-3, "step": 0.05e-3},
                                 {"start": -4e-3, "stop": 4e-3, "step": 0.25e-3},
@@ -82,7 +108,7 @@ def accuracy(queries, elements, yaws, loads, store):
     largest_force = np.nanmax(arrays["patch_values"][..., 0])
     model = fastnorm.WheelsetContact(solver="cg", elements=elements)
     rng = np.random.default_rng(1)
-    differences = {(region, how): {"normal_force": [], "contact_angle": [], "max_pressure": []}
+    differences = {(region, how): {name: [] for name in COMPARED}
                    for region in ("tread", "flange") for how in ("pchip", "multilinear")}
     largest_at = {}  # (region, how, output) -> (difference, where)
     guarded = 0
@@ -93,24 +119,16 @@ def accuracy(queries, elements, yaws, loads, store):
         if looked_up["pchip"][0] != "ok":
             guarded += 1
             continue
-        model.reset()
-        direct = model.equilibrium(load_n=load, lateral_shift_m=y, yaw_rad=yaw)
-        if direct.status != "converged":
-            print(f"  direct equilibrium at y={y:.6g} yaw={yaw:.3g} load={load:.6g}: {direct.status}")
+        direct = _direct(model, y, yaw, load)
+        if direct is None:
             continue
         region = "tread" if abs(y) < 4e-3 else "flange"
         for how, (_, outputs) in looked_up.items():
-            for w, wheel in enumerate(tables.WHEELS):
-                for p, patch in enumerate(direct.wheels[w].patches[:tables.PATCHES]):
-                    d = differences[(region, how)]
-                    at = {name: outputs[names.index(f"{name}_{wheel}{p}")] for name in d}
-                    d["normal_force"].append(abs(at["normal_force"] - patch.normal_force_n) / largest_force)
-                    d["contact_angle"].append(abs(at["contact_angle"] - patch.contact_angle_rad))
-                    d["max_pressure"].append(abs(at["max_pressure"] / patch.max_pressure_pa - 1))
-                    for name, values in d.items():
-                        if values[-1] >= largest_at.get((region, how, name), (-1.0, ""))[0]:
-                            largest_at[(region, how, name)] = (values[-1], f"y={y * 1e3:.4g}mm yaw={yaw * 1e3:.3g}mrad "
-                                                                           f"load={load / 1e3:.4g}kN {wheel}{p}")
+            for where, patch_differences in _differences(names, outputs, direct, largest_force, y, yaw, load):
+                for name, difference in patch_differences.items():
+                    differences[(region, how)][name].append(difference)
+                    if difference >= largest_at.get((region, how, name), (-1.0, ""))[0]:
+                        largest_at[(region, how, name)] = (difference, where)
     print(f"accuracy queries={queries} elements={elements} yaws={yaws} loads={loads} guarded={guarded} "
           f"largest_force_n={largest_force:.6g}")
     for (region, how), d in differences.items():
@@ -143,19 +161,14 @@ def flange_steps(elements):
                     if status != "ok":
                         guarded += 1
                         continue
-                    model.reset()
-                    direct = model.equilibrium(load_n=load, lateral_shift_m=y, yaw_rad=yaw)
-                    if direct.status != "converged":
+                    direct = _direct(model, y, yaw, load)
+                    if direct is None:
                         continue
-                    for w, wheel in enumerate(tables.WHEELS):
-                        for p, patch in enumerate(direct.wheels[w].patches[:tables.PATCHES]):
-                            compared += 1
-                            where = f"y={y * 1e3:.5g}mm yaw={yaw * 1e3:.3g}mrad load={load / 1e3:.4g}kN {wheel}{p}"
-                            for name, value, scale in (("normal_force", patch.normal_force_n, 455505.0),
-                                                       ("contact_angle", patch.contact_angle_rad, 1.0)):
-                                difference = abs(outputs[names.index(f"{name}_{wheel}{p}")] - value) / scale
-                                if difference > largest[name][0]:
-                                    largest[name] = (difference, where)
+                    for where, patch_differences in _differences(names, outputs, direct, 455505.0, y, yaw, load):
+                        compared += 1
+                        for name in largest:
+                            if patch_differences[name] > largest[name][0]:
+                                largest[name] = (patch_differences[name], where)
         print(f"flange_steps elements={elements} step_mm={step * 1e3:.4g} compared={compared} guarded={guarded} "
               f"normal_force_max={largest['normal_force'][0]:.3g} at {largest['normal_force'][1]} "
               f"contact_angle_max={largest['contact_angle'][0]:.3g} at {largest['contact_angle'][1]}", flush=True)

@@ -80,10 +80,13 @@ TEST_CASE("A factorisation continued from a kept leading factor is the factorisa
   // unknowns and computes the rest (detail/in_place_cholesky.hpp): checked against Eigen's
   // LLT of the whole matrix, for every size of the kept part; at 300 unknowns the update
   // runs in several tiles of rows and columns (kept 70: 64, kept 150 and 299: 54 and 27).
+  const auto positive_definite = [](Eigen::Index n) {
+    const Eigen::MatrixXd b = Eigen::MatrixXd::Random(n, n);
+    return Eigen::MatrixXd(b * b.transpose() + Eigen::MatrixXd::Identity(n, n));
+  };
   for (const auto& [n, kept_sizes] : {std::pair<Eigen::Index, std::vector<Eigen::Index>>{23, {0, 1, 7, 22, 23}},
                                       std::pair<Eigen::Index, std::vector<Eigen::Index>>{300, {70, 150, 299}}}) {
-    const Eigen::MatrixXd b = Eigen::MatrixXd::Random(n, n);
-    const Eigen::MatrixXd matrix = b * b.transpose() + Eigen::MatrixXd::Identity(n, n);
+    const Eigen::MatrixXd matrix = positive_definite(n);
     const Eigen::MatrixXd reference = Eigen::LLT<Eigen::MatrixXd>(matrix).matrixL();
     const Eigen::VectorXd rhs = Eigen::VectorXd::LinSpaced(n, -1.0, 2.0);
     for (const Eigen::Index kept : kept_sizes) {
@@ -102,8 +105,7 @@ TEST_CASE("A factorisation continued from a kept leading factor is the factorisa
   }
   // A trailing block that is not positive definite is reported, not factored.
   const Eigen::Index n = 23;
-  const Eigen::MatrixXd b = Eigen::MatrixXd::Random(n, n);
-  const Eigen::MatrixXd matrix = b * b.transpose() + Eigen::MatrixXd::Identity(n, n);
+  const Eigen::MatrixXd matrix = positive_definite(n);
   const Eigen::MatrixXd reference = Eigen::LLT<Eigen::MatrixXd>(matrix).matrixL();
   fastnorm::detail::InPlaceCholesky<double> cholesky;
   cholesky.resize(n);

@@ -407,10 +407,10 @@ class GalerkinSetSolver {
       const bool source_identity = is_identity(source.count);
       auto times_basis = memory_.times_basis.resize(rows, q_s);
       if (!source_identity) {
-        // By 64 rows: Eigen packs a product's operands into a temporary that comes from the
-        // heap past 128 KB, as these (every target's rows at once) did (docs/performance.md §8).
-        for (Index first = 0; first < rows; first += 64) {
-          const Index count = std::min<Index>(64, rows - first);
+        // In tiles of rows: every target's rows at once were packed on the heap (stack_tile).
+        const Index tile = stack_tile<Scalar>(source.count);
+        for (Index first = 0; first < rows; first += tile) {
+          const Index count = std::min(tile, rows - first);
           times_basis.middleRows(first, count).noalias() = coupling.middleRows(first, count) * block_of(source.count);
         }
       }

@@ -13,6 +13,17 @@
 namespace fastnorm {
 namespace detail {
 
+/// Rows (and columns) of a tile of a product or solve whose inner size is `depth`, so that
+/// Eigen's packed copies of its operands (up to depth × tile values each) stay below its
+/// stack limit (EIGEN_STACK_ALLOCATION_LIMIT, 128 KB): past it they come from the heap, and
+/// the time loop allocates (docs/performance.md §8). depth · tile ≤ 64 KB up to a depth of
+/// 1 024 (measured: no allocation in the factor update up to 2 000).
+template <typename Scalar>
+Eigen::Index stack_tile(Eigen::Index depth) {
+  return std::clamp<Eigen::Index>(static_cast<Eigen::Index>(65536 / sizeof(Scalar)) / std::max<Eigen::Index>(depth, 1),
+                                  8, 64);
+}
+
 /// Usage: `resize(n)`, fill the lower triangle of `matrix()`, `factorise()` (which
 /// overwrites it with the factor L), then `solve_in_place(rhs)` as often as needed.
 template <typename Scalar>
@@ -72,16 +83,12 @@ class InPlaceCholesky {
 
  private:
   /// L21 = A21 L11⁻ᵀ and the lower triangle of A22 − L21 L21ᵀ in place, in tiles of at most
-  /// `tile` rows and columns. Eigen's blocked triangular solve and products pack their
-  /// operands into temporaries of up to kc × (the other size) values that come from the heap
-  /// once they pass its stack limit (128 KB), as they did here for the polynomial bases' ≈ 100
-  /// kept unknowns (docs/performance.md §8). Tiles of kept · tile ≤ 64 KB bound every packed
-  /// block below the limit whatever Eigen's blocking, up to 1 024 kept unknowns (measured:
-  /// none allocates up to 2 000). A system whose tiles are the whole blocks makes Eigen's two
+  /// stack_tile(kept) rows and columns: untiled, Eigen packed the polynomial bases' ≈ 100
+  /// kept unknowns on the heap. A system whose tiles are the whole blocks makes Eigen's two
   /// calls, as untiled.
   static void update_trailing(Eigen::Map<Matrix>& values, Index kept) {
     const Index rest = values.rows() - kept;
-    const Index tile = std::clamp<Index>(static_cast<Index>(65536 / sizeof(Scalar)) / kept, 8, 64);
+    const Index tile = stack_tile<Scalar>(kept);
     const auto factor = values.topLeftCorner(kept, kept);
     auto coupling = values.bottomLeftCorner(rest, kept);
     // X L11ᵀ = A21 column block by column block: X_c = (A21_c − X_{<c} L_{c,<c}ᵀ) L_cc⁻ᵀ.
