@@ -440,6 +440,7 @@ int fastnorm_wheelset_create(const fastnorm_wheelset_options* options, fastnorm_
     contact.stiffness = options->stiffness != 0;
     apply_max_iterations(options->max_iterations, contact.solver);
     contact.distance.tolerance = options->distance_tolerance;
+    contact.distance_everywhere = options->distance_everywhere != 0;
     FASTNORM_CHECK(options->friction >= 0, fastnorm::describe("options.friction must be >= 0 (0: none)", options->friction));
     if (options->friction > 0) contact.creep.friction = options->friction;
     FASTNORM_CHECK(options->creep_method == FASTNORM_STRIP_THEORY || options->creep_method == FASTNORM_FASTSIM,

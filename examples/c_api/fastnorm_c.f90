@@ -73,6 +73,7 @@ module fastnorm_c
     real(c_double) :: distance_tolerance
     real(c_double) :: friction  ! mu of the creep forces of fastnorm_wheelset_evaluate_moving; 0: none
     integer(c_int) :: creep_method  ! FASTNORM_STRIP_THEORY (default) or FASTNORM_FASTSIM
+    integer(c_int) :: distance_everywhere  ! 1: h on every element; 0 (default): where it can touch
   end type
 
   type, bind(c) :: fastnorm_pose

@@ -189,6 +189,9 @@ typedef struct fastnorm_wheelset_options {
   double friction;            /* Coulomb's mu of every patch for the creep forces of
                                  fastnorm_wheelset_evaluate_moving (> 0); 0: none (default) */
   int creep_method;           /* FASTNORM_STRIP_THEORY (default) or FASTNORM_FASTSIM */
+  int distance_everywhere;    /* 1: h on every element of a patch's grid; 0 (default): only where an
+                                 element can interpenetrate, 1e-3 m elsewhere (docs/wheel-rail.md §4,
+                                 item 8) */
 } fastnorm_wheelset_options;
 
 /* Fills the defaults: "norm", S1002 on UIC60, radius 0.45 m, gauge 1.435 m, cant 1/40,

@@ -465,7 +465,8 @@ std::unique_ptr<PyWheelset> make_wheelset(const std::string& solver, Eigen::Inde
                                           std::optional<std::string> rail_profile, double nominal_radius,
                                           double gauge, double cant, const Material& material, bool stiffness,
                                           std::optional<int> max_iterations, double distance_tolerance,
-                                          std::optional<double> friction, const std::string& creep_method) {
+                                          bool distance_everywhere, std::optional<double> friction,
+                                          const std::string& creep_method) {
   wr::WheelsetOnTrack setup;
   setup.wheel_profile = wheel_profile.value_or("");
   setup.rail_profile = rail_profile.value_or("");
@@ -478,6 +479,7 @@ std::unique_ptr<PyWheelset> make_wheelset(const std::string& solver, Eigen::Inde
   options.material = material;
   options.stiffness = stiffness;
   options.distance.tolerance = distance_tolerance;
+  options.distance_everywhere = distance_everywhere;
   options.creep.friction = friction;
   if (creep_method == "fastsim") {
     options.creep.method = wr::CreepMethod::fastsim;
@@ -848,7 +850,8 @@ void bind_wheelset(py::module_& m) {
                          "The contact model of one wheelset on its track (docs/wheel-rail.md §9), kept between "
                          "calls. Profiles: files (SIMPACK .prw/.prr or 'y z' in mm), None for S1002 and UIC60. "
                          "elements: across the largest patch. distance_tolerance_m: h interpolated along rows within it "
-                         "(0: exact at every element). friction: Coulomb's mu of every patch, for creep forces "
+                         "(0: exact at every element); distance_everywhere: h on every element of a patch's grid "
+                         "(default: only where an element can interpenetrate, 1e-3 m elsewhere). friction: Coulomb's mu of every patch, for creep forces "
                          "when evaluate is given a Velocity; creep_method: 'strip_theory' (default) or 'fastsim'. "
                          "Calls on one model run one at a time.")
       .def(py::init(&make_wheelset), py::kw_only(), "solver"_a = "norm", "elements"_a = 60,
@@ -856,7 +859,7 @@ void bind_wheelset(py::module_& m) {
            "nominal_radius_m"_a = wr::WheelsetLayout().nominal_radius, "gauge_m"_a = wr::TrackLayout().gauge,
            "cant_rad"_a = wr::TrackLayout().cant, "material"_a = Material::steel(), "stiffness"_a = true,
            "max_iterations"_a = py::none(), "distance_tolerance_m"_a = wr::DistanceAccuracy().tolerance,
-           "friction"_a = py::none(), "creep_method"_a = "strip_theory")
+           "distance_everywhere"_a = false, "friction"_a = py::none(), "creep_method"_a = "strip_theory")
       .def(
           "evaluate",
           [](PyWheelset& model, double y, double z, double roll, double yaw,

@@ -45,6 +45,7 @@ TEST_CASE("At the equilibrium pose the model gives the equilibrium's patches", "
   REQUIRE(equilibrium.ok());
   auto options = coarse();
   options.snap_to_lattice = false;  // grids centred on the reference points, as the equilibrium's
+  options.distance_everywhere = true;  // and h on every element, as the equilibrium's
   options.grid.element_length = equilibrium.patches[0].patch.grid.dx();
   options.grid.element_width = equilibrium.patches[0].patch.grid.dy();
   wr::WheelsetContact<> contact(track, wheelset, options);

@@ -30,7 +30,8 @@ class Options(ctypes.Structure):
                 ("nominal_radius", ctypes.c_double), ("gauge", ctypes.c_double), ("cant", ctypes.c_double),
                 ("material", Material), ("elements", ctypes.c_int), ("stiffness", ctypes.c_int),
                 ("max_iterations", ctypes.c_int), ("distance_tolerance", ctypes.c_double),
-                ("friction", ctypes.c_double), ("creep_method", ctypes.c_int)]
+                ("friction", ctypes.c_double), ("creep_method", ctypes.c_int),
+                ("distance_everywhere", ctypes.c_int)]
 
 
 class Pose(ctypes.Structure):

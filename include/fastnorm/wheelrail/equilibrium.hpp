@@ -250,6 +250,7 @@ class EquilibriumSearch {
     contact.snap_to_lattice = false;     // grids centred on the contact reference points, as CONTACT's
     contact.reduced_warm_start = false;  // a reduced answer that does not depend on the path to it
     contact.stiffness = true;            // the Newton Jacobian
+    contact.distance_everywhere = true;  // the patches' h reported on the whole grid
     return contact;
   }
 

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "fastnorm/error.hpp"
 #include "fastnorm/grid.hpp"
@@ -88,6 +89,62 @@ inline PatchExtent patch_extent(const PatchFrame& frame, const ContactRegion& re
     extent.s_high = std::max(extent.s_high, s);
   }
   return extent;
+}
+
+/// The columns [first, last] of one row of a patch grid on which h is computed (none when
+/// first > last), and whether an element there interpenetrates (h ≤ 0): what
+/// touching_spans and undeformed_distance fill in (docs/wheel-rail.md §4, item 8).
+struct RowSpan {
+  Eigen::Index first = 0, last = -1;
+  bool touches = false;
+  bool empty() const { return first > last; }
+};
+
+/// For every row of `grid` (the patch of `region` in `frame`), the columns where an element
+/// can interpenetrate, into `spans` (resized to grid.my()): every pair of neighbouring
+/// slices covers the rows within one element of its lateral stretch and the columns within
+/// one element of both slices' overlap √(2ρ·pen) around their locus x, as patch_extent.
+/// The overlap of a slice bounds its section's: the wheel rises faster than the parabola
+/// x²/2ρ along x, and its gap normal to an inclined rail is below the vertical gap pen.
+inline void touching_spans(const PatchFrame& frame, const ContactRegion& region, const Grid<double>& grid,
+                           std::vector<RowSpan>& spans) {
+  spans.assign(static_cast<std::size_t>(grid.my()), RowSpan{});
+  const Eigen::Vector3d lateral = frame.lateral_axis();
+  struct Reach {
+    double s, x_low, x_high;
+  };
+  auto reach = [&](const GapSample& slice) {
+    const double half_length = std::sqrt(2 * slice.wheel.radius * -slice.gap);
+    const double x = slice.wheel.point.x() - frame.reference.x();
+    const Eigen::Vector3d rail_point(slice.wheel.point.x(), slice.wheel.point.y(), slice.rail_z);
+    return Reach{(rail_point - frame.reference).dot(lateral), x - half_length, x + half_length};
+  };
+  auto cover = [&](const Reach& a, const Reach& b) {
+    const double s_low = std::min(a.s, b.s) - grid.dy(), s_high = std::max(a.s, b.s) + grid.dy();
+    const auto first_j = std::max<Eigen::Index>(0, static_cast<Eigen::Index>(std::ceil((s_low - grid.y0()) / grid.dy())));
+    const auto last_j =
+        std::min<Eigen::Index>(grid.my() - 1, static_cast<Eigen::Index>(std::floor((s_high - grid.y0()) / grid.dy())));
+    const double x_low = std::min(a.x_low, b.x_low) - grid.dx(), x_high = std::max(a.x_high, b.x_high) + grid.dx();
+    const auto first_i = std::max<Eigen::Index>(0, static_cast<Eigen::Index>(std::floor((x_low - grid.x0()) / grid.dx())));
+    const auto last_i =
+        std::min<Eigen::Index>(grid.mx() - 1, static_cast<Eigen::Index>(std::ceil((x_high - grid.x0()) / grid.dx())));
+    for (Eigen::Index j = first_j; j <= last_j && first_i <= last_i; ++j) {
+      RowSpan& span = spans[static_cast<std::size_t>(j)];
+      if (span.empty()) {
+        span.first = first_i, span.last = last_i;
+      } else {
+        span.first = std::min(span.first, first_i), span.last = std::max(span.last, last_i);
+      }
+    }
+  };
+  if (region.slices.empty()) return;
+  Reach before = reach(region.slices.front());
+  cover(before, before);
+  for (std::size_t k = 1; k < region.slices.size(); ++k) {
+    const Reach next = reach(region.slices[k]);
+    cover(before, next);
+    before = next;
+  }
 }
 
 /// The grid over an extent: element centres at whole multiples of (dx, ds) from P_ref, as

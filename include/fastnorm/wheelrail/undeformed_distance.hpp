@@ -10,6 +10,7 @@
 #include <cmath>
 #include <limits>
 #include <optional>
+#include <vector>
 
 #include "fastnorm/error.hpp"
 #include "fastnorm/grid.hpp"
@@ -171,23 +172,25 @@ class NormalLines {
   double rail_profile_y_ = std::numeric_limits<double>::quiet_NaN();  // where the last row met the rail
 };
 
-/// One row of h by nodes and cubic Hermite interpolation (docs/wheel-rail.md §4, item 7).
-/// Nodes every `span` elements (the last interval may be shorter) carry the exact root t and
+/// Columns [first, last] of row j of h by nodes and cubic Hermite interpolation
+/// (docs/wheel-rail.md §4, item 7). Nodes every `span` elements from `first` (the last
+/// interval may be shorter) carry the exact root t and
 /// its slope dt/di. On an interval of L elements the Hermite cubic is within L⁴/384·max|t⁗|
 /// of t; t⁗ is estimated from the jumps of the cubics' third derivatives between
 /// neighbouring intervals, and an interval whose bound, times a safety factor of 4, exceeds
 /// `tolerance` is computed exactly. `first_root` holds the previous row's first node root
 /// (NaN: none), where this row's first node starts, and receives this row's. Returns false
 /// if a node has no wheel surface (the caller then computes the row exactly).
-inline bool interpolate_row(const NormalLines& lines, Eigen::Index j, double rail, Eigen::Index span, double tolerance,
-                            double& first_root, Eigen::VectorXd& h) {
+inline bool interpolate_row(const NormalLines& lines, Eigen::Index j, Eigen::Index first_column, Eigen::Index last,
+                            double rail, Eigen::Index span, double tolerance, double& first_root, Eigen::VectorXd& h) {
   struct Node {
     double i = 0, t = 0, slope = 0;  // position (elements), root (m), dt/di (m per element)
   };
   const Grid<double>& grid = lines.grid();
-  const Eigen::Index last = grid.mx() - 1, intervals = (last + span - 1) / span;
+  if (last <= first_column) return false;
+  const Eigen::Index intervals = (last - first_column + span - 1) / span;
   std::array<Node, 4> ring;  // nodes q − 1 … q + 2 of interval q, at (q mod 4)
-  auto node_position = [&](Eigen::Index q) { return static_cast<double>(std::min(q * span, last)); };
+  auto node_position = [&](Eigen::Index q) { return static_cast<double>(std::min(first_column + q * span, last)); };
   // Node q exact: Newton from the previous nodes' extrapolation, then one correction at the
   // root, where the slope −G_i/G_t is taken.
   auto compute_node = [&](Eigen::Index q) -> bool {
@@ -272,6 +275,45 @@ inline bool interpolate_row(const NormalLines& lines, Eigen::Index j, double rai
   return true;
 }
 
+/// h to `accuracy` on the rows of a patch grid, one row at a time (NormalLines kept).
+class RowDistance {
+ public:
+  RowDistance(const Track& track, const Wheelset& wheelset, const WheelsetPose& pose, const PatchFrame& frame,
+              const Grid<double>& grid, const DistanceAccuracy& accuracy)
+      : lines_(track, wheelset, pose, frame, grid),
+        span_(static_cast<Eigen::Index>(std::floor(accuracy.node_spacing / grid.dx()))),
+        tolerance_(accuracy.tolerance),
+        by_rows_(accuracy.tolerance > 0 && span_ >= 2) {}
+
+  /// Columns [first, last] of row j into h; true if one of them interpenetrates (h ≤ 0).
+  bool row(Eigen::Index j, Eigen::Index first, Eigen::Index last, Eigen::VectorXd& h) {
+    const Grid<double>& grid = lines_.grid();
+    const auto rail = lines_.start_row(j);
+    if (!rail) {
+      for (Eigen::Index i = first; i <= last; ++i) h(grid.index(i, j)) = no_surface_gap;
+      first_root_ = none;
+      return false;
+    }
+    // The previous row's first node starts this one's only where both start at one column.
+    if (first != first_column_) first_root_ = none;
+    first_column_ = first;
+    if (!(by_rows_ && interpolate_row(lines_, j, first, last, *rail, span_, tolerance_, first_root_, h))) {
+      first_root_ = none;
+      lines_.exact_elements(first, last, j, *rail, none, h);
+    }
+    return h.segment(grid.index(first, j), last - first + 1).minCoeff() <= 0;
+  }
+
+ private:
+  static constexpr double none = std::numeric_limits<double>::quiet_NaN();
+  NormalLines lines_;
+  Eigen::Index span_;
+  double tolerance_;
+  bool by_rows_;
+  double first_root_ = none;  // of the last row interpolated: where the next row's first node starts
+  Eigen::Index first_column_ = 0;
+};
+
 }  // namespace detail
 
 /// h to `accuracy` (docs/wheel-rail.md §4, item 7): along each row exact at nodes and
@@ -284,22 +326,60 @@ inline void undeformed_distance(const Track& track, const Wheelset& wheelset, co
                                 const PatchFrame& frame, const Grid<double>& grid, const DistanceAccuracy& accuracy,
                                 Eigen::VectorXd& h) {
   accuracy.validate();
-  const auto span = static_cast<Eigen::Index>(std::floor(accuracy.node_spacing / grid.dx()));
-  const bool by_rows = accuracy.tolerance > 0 && span >= 2;
-  detail::NormalLines lines(track, wheelset, pose, frame, grid);
+  detail::RowDistance rows(track, wheelset, pose, frame, grid, accuracy);
   h.resize(grid.size());
-  const double none = std::numeric_limits<double>::quiet_NaN();
-  double first_root = none;  // of the last row interpolated: where the next row's first node starts
+  for (Eigen::Index j = 0; j < grid.my(); ++j) rows.row(j, 0, grid.mx() - 1, h);
+}
+
+/// h at an element that undeformed_distance(…, spans, h) leaves out because it cannot
+/// interpenetrate: a positive placeholder (m), not a distance (docs/wheel-rail.md §4, item 8).
+inline constexpr double not_computed_gap = 1e-3;
+
+/// h to `accuracy` only where an element can interpenetrate (docs/wheel-rail.md §4, item 8):
+/// on the columns of `spans` (touching_spans of the patch's region; one per row) and
+/// wherever these checks lead, not_computed_gap elsewhere. A span is widened to its whole
+/// row unless h is positive at both its ends and rises outwards there (h is convex along a
+/// row: x²/2ρ dominates); a row left out is computed whole when a neighbour interpenetrates.
+/// On return `spans` holds what was computed and `touches` which rows interpenetrate. Every
+/// element with h ≤ 0 then holds the value of the overload above (tested on thousands of
+/// poses). `h` is resized to the grid.
+/// @throws fastnorm::invalid_argument as the overload above, or for spans of another grid
+inline void undeformed_distance(const Track& track, const Wheelset& wheelset, const WheelsetPose& pose,
+                                const PatchFrame& frame, const Grid<double>& grid, const DistanceAccuracy& accuracy,
+                                std::vector<RowSpan>& spans, Eigen::VectorXd& h) {
+  accuracy.validate();
+  FASTNORM_CHECK(static_cast<Eigen::Index>(spans.size()) == grid.my(),
+                 "undeformed_distance: spans must hold one span per grid row");
+  detail::RowDistance rows(track, wheelset, pose, frame, grid, accuracy);
+  h.setConstant(grid.size(), not_computed_gap);
+  const Eigen::Index last_column = grid.mx() - 1;
+  auto at = [&](Eigen::Index i, Eigen::Index j) { return h(grid.index(i, j)); };
+  // Positive and rising outwards at both ends (an end on the grid's edge needs neither).
+  auto closed = [&](const RowSpan& span, Eigen::Index j) {
+    const bool left = span.first == 0 || (span.first < span.last && at(span.first, j) > 0 &&
+                                          at(span.first, j) >= at(span.first + 1, j));
+    const bool right = span.last == last_column || (span.first < span.last && at(span.last, j) > 0 &&
+                                                    at(span.last, j) >= at(span.last - 1, j));
+    return left && right;
+  };
   for (Eigen::Index j = 0; j < grid.my(); ++j) {
-    const auto rail = lines.start_row(j);
-    if (!rail) {
-      for (Eigen::Index i = 0; i < grid.mx(); ++i) h(grid.index(i, j)) = no_surface_gap;
-      first_root = none;
-      continue;
+    RowSpan& span = spans[static_cast<std::size_t>(j)];
+    if (span.empty()) continue;
+    FASTNORM_CHECK(span.first >= 0 && span.last <= last_column, "undeformed_distance: a span leaves the grid");
+    span.touches = rows.row(j, span.first, span.last, h);
+    if (!closed(span, j)) {
+      span = {0, last_column, rows.row(j, 0, last_column, h)};
     }
-    if (by_rows && detail::interpolate_row(lines, j, *rail, span, accuracy.tolerance, first_root, h)) continue;
-    first_root = none;
-    lines.exact_elements(0, grid.mx() - 1, j, *rail, none, h);
+  }
+  auto touches = [&](Eigen::Index j) { return j >= 0 && j < grid.my() && spans[static_cast<std::size_t>(j)].touches; };
+  for (bool grew = true; grew;) {
+    grew = false;
+    for (Eigen::Index j = 0; j < grid.my(); ++j) {
+      RowSpan& span = spans[static_cast<std::size_t>(j)];
+      if (!span.empty() || !(touches(j - 1) || touches(j + 1))) continue;
+      span = {0, last_column, rows.row(j, 0, last_column, h)};
+      grew = true;
+    }
   }
 }
 

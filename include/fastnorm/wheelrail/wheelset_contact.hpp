@@ -284,7 +284,13 @@ class WheelsetContact {
       patch.frame = next[k].frame;
       patch.grid = next[k].grid;
       spare_storage_.fit(wheel.patches[k], patch.grid.size());
-      undeformed_distance(track_, wheelset_, pose, patch.frame, patch.grid, options_.distance, patch.undeformed_distance);
+      if (options_.distance_everywhere) {
+        undeformed_distance(track_, wheelset_, pose, patch.frame, patch.grid, options_.distance, patch.undeformed_distance);
+      } else {
+        touching_spans(patch.frame, regions[k], patch.grid, spans_);
+        undeformed_distance(track_, wheelset_, pose, patch.frame, patch.grid, options_.distance, spans_,
+                            patch.undeformed_distance);
+      }
     }
     wheel.times.distance = detail::seconds_since(clock);
 
@@ -448,6 +454,7 @@ class WheelsetContact {
   std::vector<ContactRegion> regions_;                 // of the wheel being evaluated, and spares
   std::array<GapSampler, 2> samplers_;                 // per wheel: the contact search, continued
   std::vector<Eigen::Index> shifted_set_;              // a predecessor's set on the new grid (start_from)
+  std::vector<RowSpan> spans_;                         // of the patch whose h is computed (evaluate_wheel)
   WheelsetContactResult result_;
 };
 

@@ -55,6 +55,11 @@ struct WheelsetContactOptions {
   /// exact nodes within 0.1 nm (docs/wheel-rail.md §4, item 7); `distance.tolerance = 0`:
   /// every element exactly.
   DistanceAccuracy distance;
+  /// h on every element of a patch's grid. Off (default): only on the rows and columns
+  /// where an element can interpenetrate, the rest of the grid box (kept for the steps to
+  /// come) holding not_computed_gap (docs/wheel-rail.md §4, item 8); the solvers read h
+  /// only where it is negative, so their answers are the same.
+  bool distance_everywhere = false;
   /// Elastic constants of wheel (body 1) and rail (body 2); steel for both by default.
   Material<double> material = Material<double>::steel();
   /// Where the element sizes are chosen when not given; by default the rigid two-wheel
