@@ -173,7 +173,7 @@ class NormalLines {
 };
 
 /// Columns [first, last] of row j of h by nodes and cubic Hermite interpolation
-/// (docs/wheel-rail.md §4, item 7). Nodes every `span` elements from `first` (the last
+/// (docs/wheel-rail.md §4, item 7). Nodes every `span` elements from `first_column` (the last
 /// interval may be shorter) carry the exact root t and
 /// its slope dt/di. On an interval of L elements the Hermite cubic is within L⁴/384·max|t⁗|
 /// of t; t⁗ is estimated from the jumps of the cubics' third derivatives between
@@ -341,8 +341,10 @@ inline constexpr double not_computed_gap = 1e-3;
 /// row unless h is positive at both its ends and rises outwards there (h is convex along a
 /// row: x²/2ρ dominates); a row left out is computed whole when a neighbour interpenetrates.
 /// On return `spans` holds what was computed and `touches` which rows interpenetrate. Every
-/// element with h ≤ 0 then holds the value of the overload above (tested on thousands of
-/// poses). `h` is resized to the grid.
+/// interpenetrating element of the region is then computed, to the bound of the overload
+/// above (its nodes start at each span's first column; tested on thousands of poses); one
+/// of another region whose interpenetration reaches into the grid may be left out. `h` is
+/// resized to the grid.
 /// @throws fastnorm::invalid_argument as the overload above, or for spans of another grid
 inline void undeformed_distance(const Track& track, const Wheelset& wheelset, const WheelsetPose& pose,
                                 const PatchFrame& frame, const Grid<double>& grid, const DistanceAccuracy& accuracy,

@@ -57,8 +57,9 @@ struct WheelsetContactOptions {
   DistanceAccuracy distance;
   /// h on every element of a patch's grid. Off (default): only on the rows and columns
   /// where an element can interpenetrate, the rest of the grid box (kept for the steps to
-  /// come) holding not_computed_gap (docs/wheel-rail.md §4, item 8); the solvers read h
-  /// only where it is negative, so their answers are the same.
+  /// come) holding not_computed_gap (docs/wheel-rail.md §4, item 8). The solvers read h
+  /// only where it is negative, so their answers move only by h's interpolation, within
+  /// distance.tolerance (a row's nodes start at its span's first column).
   bool distance_everywhere = false;
   /// Elastic constants of wheel (body 1) and rail (body 2); steel for both by default.
   Material<double> material = Material<double>::steel();
