@@ -851,8 +851,9 @@ void bind_wheelset(py::module_& m) {
                          "calls. Profiles: files (SIMPACK .prw/.prr or 'y z' in mm), None for S1002 and UIC60. "
                          "elements: across the largest patch. distance_tolerance_m: h interpolated along rows within it "
                          "(0: exact at every element); distance_everywhere: h on every element of a patch's grid "
-                         "(default: only where an element can interpenetrate, 1e-3 m elsewhere). friction: Coulomb's mu of every patch, for creep forces "
-                         "when evaluate is given a Velocity; creep_method: 'strip_theory' (default) or 'fastsim'. "
+                         "(default: only where an element can interpenetrate, 1e-3 m elsewhere). friction: "
+                         "Coulomb's mu of every patch, for creep forces when evaluate is given a Velocity; "
+                         "creep_method: 'strip_theory' (default) or 'fastsim'. "
                          "Calls on one model run one at a time.")
       .def(py::init(&make_wheelset), py::kw_only(), "solver"_a = "norm", "elements"_a = 60,
            "wheel_profile"_a = py::none(), "rail_profile"_a = py::none(),

@@ -75,18 +75,31 @@ struct PatchExtent {
   double x_low = 0, x_high = 0, s_low = 0, s_high = 0;
 };
 
+namespace detail {
+
+/// Where a slice of a region reaches in its patch's frame (m): lateral s of its rail point,
+/// and rolling x_low…x_high, its locus x ± the overlap half-length √(2ρ·pen).
+struct SliceReach {
+  double s, x_low, x_high;
+};
+
+inline SliceReach slice_reach(const PatchFrame& frame, const GapSample& slice) {
+  const double half_length = std::sqrt(2 * slice.wheel.radius * -slice.gap);
+  const double x = slice.wheel.point.x() - frame.reference.x();
+  const Eigen::Vector3d rail_point(slice.wheel.point.x(), slice.wheel.point.y(), slice.rail_z);
+  return {(rail_point - frame.reference).dot(frame.lateral_axis()), x - half_length, x + half_length};
+}
+
+}  // namespace detail
+
 inline PatchExtent patch_extent(const PatchFrame& frame, const ContactRegion& region) {
   PatchExtent extent{1e300, -1e300, 1e300, -1e300};
-  const Eigen::Vector3d lateral = frame.lateral_axis();
   for (const auto& slice : region.slices) {
-    const double half_length = std::sqrt(2 * slice.wheel.radius * -slice.gap);
-    const double x = slice.wheel.point.x() - frame.reference.x();
-    extent.x_low = std::min(extent.x_low, x - half_length);
-    extent.x_high = std::max(extent.x_high, x + half_length);
-    const Eigen::Vector3d rail_point(slice.wheel.point.x(), slice.wheel.point.y(), slice.rail_z);
-    const double s = (rail_point - frame.reference).dot(lateral);
-    extent.s_low = std::min(extent.s_low, s);
-    extent.s_high = std::max(extent.s_high, s);
+    const auto reach = detail::slice_reach(frame, slice);
+    extent.x_low = std::min(extent.x_low, reach.x_low);
+    extent.x_high = std::max(extent.x_high, reach.x_high);
+    extent.s_low = std::min(extent.s_low, reach.s);
+    extent.s_high = std::max(extent.s_high, reach.s);
   }
   return extent;
 }
@@ -109,17 +122,8 @@ struct RowSpan {
 inline void touching_spans(const PatchFrame& frame, const ContactRegion& region, const Grid<double>& grid,
                            std::vector<RowSpan>& spans) {
   spans.assign(static_cast<std::size_t>(grid.my()), RowSpan{});
-  const Eigen::Vector3d lateral = frame.lateral_axis();
-  struct Reach {
-    double s, x_low, x_high;
-  };
-  auto reach = [&](const GapSample& slice) {
-    const double half_length = std::sqrt(2 * slice.wheel.radius * -slice.gap);
-    const double x = slice.wheel.point.x() - frame.reference.x();
-    const Eigen::Vector3d rail_point(slice.wheel.point.x(), slice.wheel.point.y(), slice.rail_z);
-    return Reach{(rail_point - frame.reference).dot(lateral), x - half_length, x + half_length};
-  };
-  auto cover = [&](const Reach& a, const Reach& b) {
+  using detail::SliceReach;
+  auto cover = [&](const SliceReach& a, const SliceReach& b) {
     const double s_low = std::min(a.s, b.s) - grid.dy(), s_high = std::max(a.s, b.s) + grid.dy();
     const auto first_j = std::max<Eigen::Index>(0, static_cast<Eigen::Index>(std::ceil((s_low - grid.y0()) / grid.dy())));
     const auto last_j =
@@ -138,10 +142,10 @@ inline void touching_spans(const PatchFrame& frame, const ContactRegion& region,
     }
   };
   if (region.slices.empty()) return;
-  Reach before = reach(region.slices.front());
+  SliceReach before = detail::slice_reach(frame, region.slices.front());
   cover(before, before);
   for (std::size_t k = 1; k < region.slices.size(); ++k) {
-    const Reach next = reach(region.slices[k]);
+    const SliceReach next = detail::slice_reach(frame, region.slices[k]);
     cover(before, next);
     before = next;
   }

@@ -285,14 +285,14 @@ class RowDistance {
         tolerance_(accuracy.tolerance),
         by_rows_(accuracy.tolerance > 0 && span_ >= 2) {}
 
-  /// Columns [first, last] of row j into h; true if one of them interpenetrates (h ≤ 0).
-  bool row(Eigen::Index j, Eigen::Index first, Eigen::Index last, Eigen::VectorXd& h) {
+  /// Columns [first, last] of row j into h.
+  void row(Eigen::Index j, Eigen::Index first, Eigen::Index last, Eigen::VectorXd& h) {
     const Grid<double>& grid = lines_.grid();
     const auto rail = lines_.start_row(j);
     if (!rail) {
       for (Eigen::Index i = first; i <= last; ++i) h(grid.index(i, j)) = no_surface_gap;
       first_root_ = none;
-      return false;
+      return;
     }
     // The previous row's first node starts this one's only where both start at one column.
     if (first != first_column_) first_root_ = none;
@@ -301,7 +301,6 @@ class RowDistance {
       first_root_ = none;
       lines_.exact_elements(first, last, j, *rail, none, h);
     }
-    return h.segment(grid.index(first, j), last - first + 1).minCoeff() <= 0;
   }
 
  private:
@@ -356,6 +355,11 @@ inline void undeformed_distance(const Track& track, const Wheelset& wheelset, co
   h.setConstant(grid.size(), not_computed_gap);
   const Eigen::Index last_column = grid.mx() - 1;
   auto at = [&](Eigen::Index i, Eigen::Index j) { return h(grid.index(i, j)); };
+  // Computes `span` of row j and notes whether it interpenetrates.
+  auto compute = [&](RowSpan& span, Eigen::Index j) {
+    rows.row(j, span.first, span.last, h);
+    span.touches = h.segment(grid.index(span.first, j), span.last - span.first + 1).minCoeff() <= 0;
+  };
   // Positive and rising outwards at both ends (an end on the grid's edge needs neither).
   auto closed = [&](const RowSpan& span, Eigen::Index j) {
     const bool left = span.first == 0 || (span.first < span.last && at(span.first, j) > 0 &&
@@ -368,9 +372,10 @@ inline void undeformed_distance(const Track& track, const Wheelset& wheelset, co
     RowSpan& span = spans[static_cast<std::size_t>(j)];
     if (span.empty()) continue;
     FASTNORM_CHECK(span.first >= 0 && span.last <= last_column, "undeformed_distance: a span leaves the grid");
-    span.touches = rows.row(j, span.first, span.last, h);
+    compute(span, j);
     if (!closed(span, j)) {
-      span = {0, last_column, rows.row(j, 0, last_column, h)};
+      span = {0, last_column};
+      compute(span, j);
     }
   }
   auto touches = [&](Eigen::Index j) { return j >= 0 && j < grid.my() && spans[static_cast<std::size_t>(j)].touches; };
@@ -379,7 +384,8 @@ inline void undeformed_distance(const Track& track, const Wheelset& wheelset, co
     for (Eigen::Index j = 0; j < grid.my(); ++j) {
       RowSpan& span = spans[static_cast<std::size_t>(j)];
       if (!span.empty() || !(touches(j - 1) || touches(j + 1))) continue;
-      span = {0, last_column, rows.row(j, 0, last_column, h)};
+      span = {0, last_column};
+      compute(span, j);
       grew = true;
     }
   }
