@@ -8,7 +8,9 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "fastnorm/detail/scratch_matrix.hpp"
@@ -34,7 +36,7 @@ struct ActiveSetWorkspace {
   ScratchMatrix<Scalar> displacement;     // at the candidates
   std::vector<Scalar> admissible_pressure;
   std::vector<Scalar> sorted_distance;    // of the force-control starting guess
-  std::vector<char> is_active;            // per element of the grid
+  std::vector<std::pair<Eigen::Index, Eigen::Index>> candidate_columns;  // per strip (find_joining)
   Solution<Scalar> spare_solution;        // storage for the next answer (workspace.recycle)
   // The join check's memory (ActiveSetLoop::find_joining): per grid element a lower bound
   // of its displacement u and the check that last bounded it, the pressures of the last
@@ -54,6 +56,7 @@ struct ActiveSetWorkspace {
     checks = 0;
     for (auto* set : {&active, &kept, &candidates, &joining, &admissible_set, &checked_set}) set->reserve(elements);
     admissible_pressure.reserve(elements);
+    candidate_columns.reserve(elements);  // per strip: my ≤ elements
     checked_pressure.reserve(elements);
     visited_elements.reserve(2 * elements);
     visited_ends.reserve(32);  // sets of a solve: a loop's usual iterations, with room
@@ -108,7 +111,6 @@ class ActiveSetLoop {
     work_.visited_elements.clear();
     work_.visited_ends.clear();
     work_.admissible_set.clear();  // last set with all pressures positive
-    work_.is_active.assign(static_cast<std::size_t>(n_all), 0);
     // A warm solve keeps the floors of the previous solve's checks: the bound holds for any
     // two pressure fields on the same influence table (docs/method.md §3). A cold one, whose
     // first set is far from the last, starts them afresh (cheaper than a bound that fails).
@@ -233,23 +235,35 @@ class ActiveSetLoop {
     if (bounded) bound_displacement_change(pressure);
     // Round-off of a sum of displacements stays far below this (relative 1000 ε).
     const Scalar margin = 1000 * std::numeric_limits<Scalar>::epsilon() * max_abs_h_;
-    for (Index k : work_.active) work_.is_active[static_cast<std::size_t>(k)] = 1;
+    find_candidate_columns();
     work_.candidates.clear();
     // The displacements cost per run of candidates along a strip and per source segment,
     // an element of a run far less: a bounded candidate between two evaluated ones of the
-    // same run is evaluated too, so that pruning never splits a run.
+    // same run is evaluated too, so that pruning never splits a run. Each strip is scanned
+    // over its candidate columns only, and the set's elements there are skipped as the runs
+    // of the sorted set they are.
+    const auto& active = work_.active;
+    const Scalar* h = h_.data();
+    const Scalar approach = approach_, join_below = join_below_;
+    std::size_t next_active = 0;  // the first element of the set not before the scan
     for (Index j = 0; j < grid.my(); ++j) {
+      const auto& columns = work_.candidate_columns[static_cast<std::size_t>(j)];
       Index last_evaluated = -1;  // in the current run of candidates; −1: none yet
-      for (Index k = j * grid.mx(); k < (j + 1) * grid.mx(); ++k) {
-        const auto e = static_cast<std::size_t>(k);
-        if (work_.is_active[e] || !(h_(k) - approach_ < join_below_)) {
+      for (Index k = j * grid.mx() + columns.first; k < j * grid.mx() + columns.second; ++k) {
+        while (next_active < active.size() && active[next_active] < k) ++next_active;
+        if (next_active < active.size() && active[next_active] == k) {
           last_evaluated = -1;  // the run ends
           continue;
         }
+        if (!(h[k] - approach < join_below)) {
+          last_evaluated = -1;
+          continue;
+        }
+        const auto e = static_cast<std::size_t>(k);
         if (bounded && work_.bounded_at[e] == work_.checks - 1) {
           auto& floor = work_.displacement_floor[e];
           floor -= work_.strip_drop[static_cast<std::size_t>(j)];
-          if (h_(k) - approach_ + floor >= margin) {
+          if (h[k] - approach + floor >= margin) {
             work_.bounded_at[e] = work_.checks;  // still a bound; evaluated only if bridged
             continue;
           }
@@ -262,7 +276,6 @@ class ActiveSetLoop {
         last_evaluated = k;
       }
     }
-    for (Index k : work_.active) work_.is_active[static_cast<std::size_t>(k)] = 0;
     auto displacement = work_.displacement.resize(static_cast<Index>(work_.candidates.size()), 1).col(0);
     set_solver_.displacement(work_.candidates, work_.active, pressure, displacement);
     work_.joining.clear();
@@ -283,6 +296,25 @@ class ActiveSetLoop {
     }
     work_.checked_set = work_.active;
     work_.checked_pressure.assign(pressure.data(), pressure.data() + pressure.size());
+  }
+
+  /// Per strip, the columns [first, last) between the first and the last element that can
+  /// join at the current approach (h − δ below the join threshold); the rest of the strip
+  /// holds no candidate. Found again only when δ moved (force control), so that a check
+  /// scans about the interpenetrating part of the box, not all of it.
+  void find_candidate_columns() {
+    if (columns_approach_ && *columns_approach_ == approach_) return;
+    columns_approach_ = approach_;
+    const auto& grid = influence_.grid();
+    auto& columns = work_.candidate_columns;
+    columns.assign(static_cast<std::size_t>(grid.my()), {Index(0), Index(0)});
+    for (Index j = 0; j < grid.my(); ++j) {
+      const Scalar* strip = h_.data() + j * grid.mx();
+      Index first = 0, last = grid.mx();
+      while (first < last && !(strip[first] - approach_ < join_below_)) ++first;
+      while (last > first && !(strip[last - 1] - approach_ < join_below_)) --last;
+      columns[static_cast<std::size_t>(j)] = {first, last};
+    }
   }
 
   /// strip_drop[j] ≥ −Σ_k C(·, j − j_k) Δp_k over every element of strip j: the largest
@@ -321,10 +353,9 @@ class ActiveSetLoop {
     std::inplace_merge(active.begin(), active.end() - static_cast<std::ptrdiff_t>(work_.joining.size()), active.end());
   }
 
-  /// The pressures `pressure` on `set` (negative ones clipped) as the answer.
+  /// The pressures `pressure` on `set` (negative ones clipped) as the answer, into the
+  /// answer that run() cleared (zero and out of contact everywhere; stored once a run).
   void store(const std::vector<Index>& set, const Scalar* pressure, Scalar approach) {
-    solution_.pressure.setZero();
-    solution_.in_contact.setConstant(false);
     for (std::size_t r = 0; r < set.size(); ++r) {
       const Scalar value = std::max(pressure[r], Scalar(0));
       solution_.pressure(set[r]) = value;
@@ -352,6 +383,7 @@ class ActiveSetLoop {
   SetSolver& set_solver_;
   ActiveSetWorkspace<Scalar>& work_;
   Solution<Scalar> solution_;
+  std::optional<Scalar> columns_approach_;  // the approach at which candidate_columns were found
   Scalar deepest_ = 0, max_abs_h_ = 0, join_below_ = 0, approach_ = 0, admissible_approach_ = 0, residual_ = 0;
 };
 
