@@ -70,10 +70,11 @@ template <typename Scalar = double>
 struct ReducedOptions {
   ActiveSetOptions<Scalar> active_set;
   /// Most memory (bytes) for the segment tables (detail/segment_tables.hpp), shared by
-  /// copies of the solver. With Scalar = double, the correlation table of a pair of segment
-  /// lengths takes 8·q²·(n_t + n_s − 1) bytes, the displacement table of one length
-  /// 8·q·(2·mx − n)·my bytes. Past the budget the solver takes the direct Toeplitz
-  /// products, slower but the same numbers. 0 turns the tables off.
+  /// copies of the solver. With Scalar = double, the displacement table of one segment
+  /// length takes 8·q·(2·mx − n)·my bytes, the correlation table of a pair of lengths (only
+  /// where a length's displacement table did not fit) 8·q²·(n_t + n_s − 1) bytes. Past the
+  /// budget the solver takes the direct Toeplitz products, slower but the same numbers to
+  /// round-off. 0 turns the tables off.
   std::size_t table_budget_bytes = std::size_t(64) << 20;
 
   /// @throws fastnorm::invalid_argument naming the offending field

@@ -359,13 +359,53 @@ class GalerkinSetSolver {
     }
   }
 
+  /// Block (t, s) from the displacement table W of the longer of the two segments
+  /// (Eq. (M3)): A_tᵀ C_ts A_s = Σ_m A_short(m, ·)ᵀ W_long(Δ + m, dj, ·) over the shorter
+  /// segment's elements, min(n_t, n_s)·q_t·q_s operations (docs/method.md §3). False when
+  /// the longer segment has no table (it is no longer than the basis, or past the budget).
+  bool block_from_displacement(Assembly& next, std::size_t t, std::size_t s) {
+    const Segment &target = next.segments[t], &source = next.segments[s];
+    const bool source_longer = source.count >= target.count;
+    const Segment &longer = source_longer ? source : target, &shorter = source_longer ? target : source;
+    if (is_identity(longer.count)) return false;
+    const Index mx = influence_.grid().mx();
+    const auto table = tables_.displacement(longer.count, new_block(), mx);
+    if (!table) return false;
+    const Index q_long = table.functions(), q_short = unknowns_of(shorter.count);
+    // entries(a, b): a over the shorter segment's unknowns, b over the longer's.
+    auto entries = memory_.block_entries.resize(q_short, q_long);
+    const Scalar* w = table.at(shorter.first - longer.first + mx - longer.count, std::abs(shorter.strip - longer.strip));
+    if (is_identity(shorter.count)) {
+      for (Index m = 0; m < shorter.count; ++m, w += q_long) {
+        for (Index b = 0; b < q_long; ++b) entries(m, b) = w[b];
+      }
+    } else {
+      const Matrix& basis = block_of(shorter.count);
+      for (Index b = 0; b < q_long; ++b) {
+        for (Index a = 0; a < q_short; ++a) {
+          const Scalar* function = basis.col(a).data();
+          Scalar sum = 0;
+          for (Index m = 0; m < shorter.count; ++m) sum += function[m] * w[m * q_long + b];
+          entries(a, b) = sum;
+        }
+      }
+    }
+    if (source_longer) {
+      store_block(next, t, s, entries);
+    } else {
+      store_block(next, t, s, entries.transpose());
+    }
+    return true;
+  }
+
   /// Aᵀ C_II A, its lower triangle (store_block): block (t, s) for t ≥ s = A_tᵀ C_ts A_s.
   /// The blocks between two segments both in `previous` are copied from it
-  /// (copy_survivors); the others are one product of a run of the table with the
-  /// correlation table of the two segment lengths (Eq. (M2)). Pairs without a table (past
-  /// the memory budget) take the direct product: per source segment s, the Toeplitz blocks
-  /// C_ts of those targets stacked into one tall matrix times A_s. `order_unknowns` has
-  /// filled `old_index`.
+  /// (copy_survivors); the others are read from the displacement table of the longer
+  /// segment (block_from_displacement), or, when it has none (past the memory budget), from
+  /// the correlation table of the two lengths (Eq. (M2)); a pair of two segments no longer
+  /// than the basis is C_ts itself. Pairs without any table take the direct product: per
+  /// source segment s, the Toeplitz blocks C_ts of those targets stacked into one tall
+  /// matrix times A_s. `order_unknowns` has filled `old_index`.
   void assemble(Assembly& next, const Assembly* previous) {
     if (previous != nullptr) copy_survivors(next, *previous);
     const auto& old_index = memory_.old_index;
@@ -379,6 +419,16 @@ class GalerkinSetSolver {
         if (old_index[s] >= 0 && old_index[t] >= 0) continue;  // both unchanged: copied
         const Segment& target = next.segments[t];
         const Index q_t = unknowns_of(target.count);
+        if (is_identity(target.count) && is_identity(source.count)) {
+          // One unknown per element on both: the block is C_ts itself, a few entries.
+          auto block = memory_.block_entries.resize(target.count, source.count);
+          for (Index n = 0; n < source.count; ++n) {
+            block.col(n) = influence_.run(target.first - source.first - n, target.strip - source.strip, target.count);
+          }
+          store_block(next, t, s, block);
+          continue;
+        }
+        if (block_from_displacement(next, t, s)) continue;
         if (const Matrix* correlation = tables_.correlation(target.count, source.count, new_block())) {
           // Σ_d c(Δ + d, dj) K(d), d = −(n_s − 1) … n_t − 1: K's column a + q_t·b is entry (a, b).
           // One dot product per entry rather than Kᵀ times the run: for runs of tens of

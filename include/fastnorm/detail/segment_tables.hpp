@@ -3,21 +3,24 @@
 /// The tables that make a reduced solver fast, built once per solver because they do not
 /// depend on h (docs/method.md §3):
 ///
-/// - correlations of the basis blocks of two segment lengths (Eq. (M2)), which turn a block
-///   of the Galerkin matrix into one short product per entry,
-///
-///       (A_tᵀ C_ts A_s)_ab = Σ_d c(Δ + d, dj) K_ab(d),   K_ab(d) = Σ_{m − n = d} A_t(m, a) A_s(n, b),
-///
-///   Δ = i_t − i_s, dj = j_t − j_s; K depends on the two element counts and the basis only;
 /// - displacements of the basis functions of a segment length (Eq. (M3)), which turn the
 ///   displacement a segment causes at an element into q products instead of n_s,
 ///
-///       u(i_t, j_t) = Σ_b α_b W_b(i_t − i_s, dj),   W_b(d, dj) = Σ_m c(d − m, dj) A_s(m, b);
+///       u(i_t, j_t) = Σ_b α_b W_b(i_t − i_s, dj),   W_b(d, dj) = Σ_m c(d − m, dj) A_s(m, b),
 ///
-///   W depends on the count, the basis and the influence table. The q values W_b of one
-///   (d, dj) are stored side by side, so that the slice a run of candidates reads is one
-///   contiguous stretch of memory (the join check reads these tables scattered, mostly from
-///   outside the cache: one stretch costs fewer misses than q of them).
+///   and a block of the Galerkin matrix into min(n_t, n_s)·q_t·q_s products, read from the
+///   W of its longer segment: (A_tᵀ C_ts A_s)_ab = Σ_m A_t(m, a) W_b(Δ + m, dj) for the
+///   longer s, Δ = i_t − i_s, dj = j_t − j_s. W depends on the count, the basis and the
+///   influence table. The q values W_b of one (d, dj) are stored side by side, so that the
+///   slice a run of candidates reads is one contiguous stretch of memory (the join check
+///   reads these tables scattered, mostly from outside the cache: one stretch costs fewer
+///   misses than q of them);
+/// - correlations of the basis blocks of two segment lengths (Eq. (M2)), for the blocks
+///   of a length whose W the budget refused,
+///
+///       (A_tᵀ C_ts A_s)_ab = Σ_d c(Δ + d, dj) K_ab(d),   K_ab(d) = Σ_{m − n = d} A_t(m, a) A_s(n, b);
+///
+///   K depends on the two element counts and the basis only.
 ///
 /// Each table is built on first use and kept within one memory budget; past it the solver
 /// falls back to the direct products, which give the same numbers more slowly.
@@ -66,6 +69,11 @@ class DisplacementTable {
   /// the functions one after the other). Written out: the join check's runs are a few elements long, and building
   /// Eigen's block expressions of a slice of this layout for each run and function cost
   /// more than the arithmetic (measured: a warm elliptic solve 40 % slower).
+  /// W_0 … W_{q−1} at row `row` (as add_to reads it) and |dj|; the next row's q values follow.
+  const Scalar* at(Index row, Index dj) const { return values_->data() + (dj * rows_ + row + row_offset_) * values_->rows(); }
+  /// q, the number of functions.
+  Index functions() const { return values_->rows(); }
+
   template <typename Coefficients, typename Displacement>
   void add_to(const Coefficients& alpha, Index row, Index dj, Displacement&& u) const {
     const Index q = values_->rows();
@@ -166,31 +174,24 @@ class SegmentTables {
     return {table, rows, longest_ - mx};
   }
 
-  /// Builds every table a solver of a covered grid can read, now, if together they fit the
+  /// Builds every table a solver of a covered grid reads, now, if together they fit the
   /// budget: W and the pseudo-inverse for each count from `first_displaced` (smaller
-  /// segments have none), K for each pair of counts. Returns whether it did; if not, it
-  /// builds nothing but the blocks, and each table is built when first needed
-  /// (docs/wheel-rail.md §9).
+  /// segments have none). With every W at hand a solver reads no K: a block comes from the
+  /// W of its longer segment, and two segments no longer than the basis take a few
+  /// entries of the influence table (GalerkinSetSolver::assemble). Returns whether it
+  /// did; if not, it builds nothing but the blocks, and each table is built when first
+  /// needed (docs/wheel-rail.md §9).
   template <typename BlockOf>
   bool build_all(const BlockOf& block_of, Index first_displaced) {
-    auto functions = [&](Index count) { return block(count, block_of).cols(); };
     Index entries = 0;
     for (Index n = first_displaced; n <= longest_; ++n) {
-      entries += (2 * longest_ - n) * functions(n) * extent_->grid().my();
-    }
-    for (Index target = 1; target <= longest_; ++target) {
-      for (Index source = 1; source <= longest_; ++source) {
-        entries += (target + source - 1) * functions(target) * functions(source);
-      }
+      entries += (2 * longest_ - n) * block(n, block_of).cols() * extent_->grid().my();
     }
     const std::size_t bytes = sizeof(Scalar) * static_cast<std::size_t>(entries);
     if (used_bytes_.load() + bytes > budget_bytes_) return false;
     for (Index n = first_displaced; n <= longest_; ++n) {
       projection(n, block_of);
       displacement(n, block_of, longest_);
-    }
-    for (Index target = 1; target <= longest_; ++target) {
-      for (Index source = 1; source <= longest_; ++source) correlation(target, source, block_of);
     }
     return true;
   }
