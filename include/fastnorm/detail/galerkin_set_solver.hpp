@@ -374,7 +374,8 @@ class GalerkinSetSolver {
     const Index q_long = table.functions(), q_short = unknowns_of(shorter.count);
     // entries(a, b): a over the shorter segment's unknowns, b over the longer's.
     auto entries = memory_.block_entries.resize(q_short, q_long);
-    const Scalar* w = table.at(shorter.first - longer.first + mx - longer.count, std::abs(shorter.strip - longer.strip));
+    const Index row = shorter.first - longer.first + mx - longer.count, dj = std::abs(shorter.strip - longer.strip);
+    const Scalar* w = table.at(row, dj);
     if (is_identity(shorter.count)) {
       for (Index m = 0; m < shorter.count; ++m, w += q_long) {
         for (Index b = 0; b < q_long; ++b) entries(m, b) = w[b];

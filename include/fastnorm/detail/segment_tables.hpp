@@ -64,20 +64,25 @@ class DisplacementTable {
 
   explicit operator bool() const { return values_ != nullptr; }
 
-  /// u(k) += Σ_b α_b W_b(d, dj) at the rows r = d + mx − n = row + k, k < u.size()
-  /// (d = i_t − i_s, mx the solver's grid's), b in order (so the sums are those of adding
-  /// the functions one after the other). Written out: the join check's runs are a few elements long, and building
-  /// Eigen's block expressions of a slice of this layout for each run and function cost
-  /// more than the arithmetic (measured: a warm elliptic solve 40 % slower).
-  /// W_0 … W_{q−1} at row `row` (as add_to reads it) and |dj|; the next row's q values follow.
-  const Scalar* at(Index row, Index dj) const { return values_->data() + (dj * rows_ + row + row_offset_) * values_->rows(); }
   /// q, the number of functions.
   Index functions() const { return values_->rows(); }
 
+  /// W_0 … W_{q−1} at the row r = d + mx − n = `row` (as add_to reads it) and |dj|; the q
+  /// values of row r + 1 follow them.
+  const Scalar* at(Index row, Index dj) const {
+    return values_->data() + (dj * rows_ + row + row_offset_) * values_->rows();
+  }
+
+  /// u(k) += Σ_b α_b W_b(d, dj) at the rows r = d + mx − n = row + k, k < u.size()
+  /// (d = i_t − i_s, mx the solver's grid's), b in order (so the sums are those of adding
+  /// the functions one after the other). Written out: the join check's runs are a few
+  /// elements long, and building Eigen's block expressions of a slice of this layout for
+  /// each run and function cost more than the arithmetic (measured: a warm elliptic solve
+  /// 40 % slower).
   template <typename Coefficients, typename Displacement>
   void add_to(const Coefficients& alpha, Index row, Index dj, Displacement&& u) const {
-    const Index q = values_->rows();
-    const Scalar* w = values_->data() + (dj * rows_ + row + row_offset_) * q;
+    const Index q = functions();
+    const Scalar* w = at(row, dj);
     for (Index k = 0; k < u.size(); ++k, w += q) {
       Scalar sum = u(k);
       for (Index b = 0; b < q; ++b) sum += alpha(b) * w[b];
