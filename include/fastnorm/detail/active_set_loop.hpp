@@ -251,12 +251,9 @@ class ActiveSetLoop {
       Index last_evaluated = -1;  // in the current run of candidates; −1: none yet
       for (Index k = j * grid.mx() + columns.first; k < j * grid.mx() + columns.second; ++k) {
         while (next_active < active.size() && active[next_active] < k) ++next_active;
-        if (next_active < active.size() && active[next_active] == k) {
+        const bool in_set = next_active < active.size() && active[next_active] == k;
+        if (in_set || !(h[k] - approach < join_below)) {
           last_evaluated = -1;  // the run ends
-          continue;
-        }
-        if (!(h[k] - approach < join_below)) {
-          last_evaluated = -1;
           continue;
         }
         const auto e = static_cast<std::size_t>(k);

@@ -376,7 +376,7 @@ class GalerkinSetSolver {
     auto entries = memory_.block_entries.resize(q_short, q_long);
     const Index row = shorter.first - longer.first + mx - longer.count, dj = std::abs(shorter.strip - longer.strip);
     const Scalar* w = table.at(row, dj);
-    if (is_identity(shorter.count)) {
+    if (is_identity(shorter.count)) {  // one unknown per element: the entries are W's own
       for (Index m = 0; m < shorter.count; ++m, w += q_long) {
         for (Index b = 0; b < q_long; ++b) entries(m, b) = w[b];
       }
@@ -423,9 +423,7 @@ class GalerkinSetSolver {
         if (is_identity(target.count) && is_identity(source.count)) {
           // One unknown per element on both: the block is C_ts itself, a few entries.
           auto block = memory_.block_entries.resize(target.count, source.count);
-          for (Index n = 0; n < source.count; ++n) {
-            block.col(n) = influence_.run(target.first - source.first - n, target.strip - source.strip, target.count);
-          }
+          influence_.fill_toeplitz(target.first - source.first, target.strip - source.strip, block);
           store_block(next, t, s, block);
           continue;
         }
