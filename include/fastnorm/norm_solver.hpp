@@ -128,6 +128,7 @@ class NormSolver : public detail::SolverBase<NormSolver<Scalar>, NormWorkspace<S
   /// Step 2 of NORM: C_II p = rhs with Eigen's Cholesky of the dense block, in storage
   /// reused from one set to the next.
   struct DenseSetSolver {
+    static constexpr bool exact_on_set = true;
     const InfluenceTable<Scalar>& influence;
     typename Workspace::Factorisation& factorisation;
     bool solve(const std::vector<Index>& active, Eigen::Ref<Matrix> columns) {

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstddef>
 #include <limits>
+#include <optional>
 
 #include "fastnorm/error.hpp"
 
@@ -17,10 +18,9 @@ template <typename Scalar = double>
 struct ActiveSetOptions {
   /// Most linear solves before giving up with Status::iteration_limit.
   int max_iterations = 200;
-  /// An element outside the set joins when its deformed gap is below
-  /// −gap_tolerance · max|h| (relative; keeps round-off from cycling an element
-  /// whose true gap is 0 in and out; docs/norm.md §2).
-  Scalar gap_tolerance = 1000 * std::numeric_limits<Scalar>::epsilon();
+  /// An element outside the set joins when its deformed gap is below −τ · max|h|, τ this
+  /// tolerance (relative). Unset: the solver's own, join_tolerance().
+  std::optional<Scalar> gap_tolerance;
   /// The starting set is {h − δ₀ ≤ start_depth_fraction · min(h − δ₀)}, δ₀ = 0 in approach
   /// control and a Hertz-like guess in force control. 1 is Kalker's original start, all
   /// interpenetrating elements; the default 0.5 is the Hertz contact area, which needs
@@ -31,12 +31,26 @@ struct ActiveSetOptions {
   /// evaluates every candidate at every check, for measurement.
   bool bound_join_check = true;
 
+  /// τ of the join check: gap_tolerance if set, else for a solver that solves each set
+  /// exactly (NORM) 1000 ε, which keeps round-off from cycling an element whose true gap is
+  /// 0 in and out (docs/norm.md §2), and for the reduced solvers reduced_gap_tolerance, or
+  /// 1000 ε where that is larger (float): their bases cannot resolve smaller gaps, and
+  /// joining what they cannot resolve only spends iterations (docs/method.md §3, "The join
+  /// tolerance").
+  Scalar join_tolerance(bool exact_on_set) const {
+    const Scalar round_off = 1000 * std::numeric_limits<Scalar>::epsilon();
+    if (gap_tolerance) return *gap_tolerance;
+    return exact_on_set ? round_off : std::max(Scalar(reduced_gap_tolerance), round_off);
+  }
+  static constexpr double reduced_gap_tolerance = 3e-5;
+
   /// @throws fastnorm::invalid_argument naming the offending field
   void validate() const {
     FASTNORM_CHECK(max_iterations >= 1,
                    detail::describe("options: max_iterations must be >= 1", max_iterations));
-    FASTNORM_CHECK(std::isfinite(gap_tolerance) && gap_tolerance >= 0,
-                   detail::describe("options: gap_tolerance must be finite and >= 0", gap_tolerance));
+    FASTNORM_CHECK(!gap_tolerance || (std::isfinite(*gap_tolerance) && *gap_tolerance >= 0),
+                   detail::describe("options: gap_tolerance must be finite and >= 0",
+                                    gap_tolerance.value_or(Scalar(0))));
     FASTNORM_CHECK(start_depth_fraction > 0 && start_depth_fraction <= 1,
                    detail::describe("options: start_depth_fraction must lie in (0, 1]",
                                     start_depth_fraction));

@@ -67,7 +67,10 @@ TEST_CASE("Reduced solvers on random gaps: no NaN, no negative force, an honest 
       for (Eigen::Index k = 0; k < h.size(); ++k) {
         if (!solution.in_contact(k)) interpenetration = std::max(interpenetration, -deformed_gap(k));
       }
-      CHECK(interpenetration <= 1e-9 * h.cwiseAbs().maxCoeff());
+      // No element outside the set interpenetrates deeper than the join tolerance allows
+      // (3e-5 · max|h| by default for the reduced solvers, solver_options.hpp), to round-off.
+      const double tolerance = fastnorm::ActiveSetOptions<>().join_tolerance(false);
+      CHECK(interpenetration <= (tolerance + 1e-9) * h.cwiseAbs().maxCoeff());
     }
   }
 }

@@ -463,17 +463,17 @@ TEST_CASE("A warm model's equilibrium tries every pose from the model's state", 
 }
 
 TEST_CASE("Where the model's force jumps across the load the search stops at its best pose", "[wheelrail][model]") {
-  // A reduced basis's force jumps as an element joins its contact set. At y = 2 mm, yaw 5 mrad,
-  // 100 kN the elliptic model's vertical force jumps by about 19 N (1.9e-4 of the load)
-  // between two poses 4.3 nm apart, and the load falls inside the jump: no pose carries it
-  // within the default tolerance (0.1 N). Before, the search ping-ponged across the jump for
-  // its 40 steps and reported zeros.
+  // A reduced basis's force jumps as an element joins its contact set. At y = 2 mm, yaw 5 mrad
+  // the elliptic model's vertical force jumps by about 19 N (1.9e-4 of the load) between two
+  // poses 4.7 nm apart, and a load of 100.008 kN falls inside the jump (loads of 100.001 to
+  // 100.018 kN do): no pose carries it within the default tolerance (0.1 N). Before, the
+  // search ping-ponged across the jump for its 40 steps and reported zeros.
   wr::WheelsetContactOptions options;
   options.solver = fastnorm::SolverSpec<double>::parse("elliptic");
   options.reduced_warm_start = false;
   options.snap_to_lattice = false;
   wr::WheelsetContact<fastnorm::ReducedSolver<fastnorm::EllipticBasis>> model(wr::Track(), wr::Wheelset(), options);
-  const double load = 1e5;
+  const double load = 1.00008e5;
   const auto found = wr::solve_equilibrium(model, 2e-3, 5e-3, load);
   CHECK(found.status == wr::EquilibriumStatus::not_converged);
   CHECK_THAT(found.message, Contains("jump across the load") && Contains("nm apart"));

@@ -87,6 +87,8 @@ struct ActiveSetWorkspace {
 /// column; it returns false if its factorisation failed. `set_solver.displacement(targets,
 /// active, p, u)` then writes u = C_TI p for pressures p on that set (the join check of
 /// step 4; a solver may use what it knows of p, e.g. that it lies in its basis).
+/// `SetSolver::exact_on_set` says whether it solves the set's problem exactly (NORM) or in
+/// a basis, which sets the join tolerance's default (ActiveSetOptions::join_tolerance).
 ///
 /// Cycles are ended deterministically: when a set comes back, the loop stops with
 /// Status::cycled and the last set whose pressures were all positive. (A cycle contains a
@@ -164,7 +166,7 @@ class ActiveSetLoop {
   bool choose_start(const std::vector<Index>& start_set) {
     deepest_ = h_.minCoeff();
     max_abs_h_ = h_.cwiseAbs().maxCoeff();
-    join_below_ = -options_.gap_tolerance * max_abs_h_;
+    join_below_ = -options_.join_tolerance(SetSolver::exact_on_set) * max_abs_h_;
     if (force_control()) {
       approach_ = approach_guess(h_, influence_.grid().element_area(), influence_.combined_modulus(),
                                  loading_.normal_force, work_.sorted_distance);

@@ -115,6 +115,7 @@ class GalerkinSetSolver {
   using Matrix = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;
   using Memory = GalerkinMemory<Scalar>;
   using Assembly = typename Memory::Assembly;
+  static constexpr bool exact_on_set = false;  // the set's problem in the basis
 
   GalerkinSetSolver(const InfluenceTable<Scalar>& influence, const Basis& basis,
                     SegmentTables<Scalar>& tables, Memory& memory)
