@@ -38,10 +38,11 @@ struct ActiveSetOptions {
   /// joining what they cannot resolve only spends iterations (docs/method.md §3, "The join
   /// tolerance").
   Scalar join_tolerance(bool exact_on_set) const {
-    const Scalar round_off = 1000 * std::numeric_limits<Scalar>::epsilon();
     if (gap_tolerance) return *gap_tolerance;
+    const Scalar round_off = 1000 * std::numeric_limits<Scalar>::epsilon();
     return exact_on_set ? round_off : std::max(Scalar(reduced_gap_tolerance), round_off);
   }
+  /// The reduced solvers' τ when gap_tolerance is unset (relative to max|h|).
   static constexpr double reduced_gap_tolerance = 3e-5;
 
   /// @throws fastnorm::invalid_argument naming the offending field

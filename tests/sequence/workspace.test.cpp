@@ -5,6 +5,7 @@
 #include <fastnorm/hertz.hpp>
 #include <fastnorm/solvers.hpp>
 
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -62,7 +63,8 @@ TEST_CASE("solve with a workspace is what solve and solve_next do", "[sequence][
 TEST_CASE("Every solver reports the residual it computed", "[sequence][workspace]") {
   const Problem problem = indenter(2e-4);
   // Each active-set solver at its own join tolerance, and the reduced ones also at NORM's.
-  const std::optional<double> tolerances[] = {std::nullopt, 1000 * 2.220446049250313e-16};
+  const double round_off = 1000 * std::numeric_limits<double>::epsilon();  // NORM's τ
+  const std::optional<double> tolerances[] = {std::nullopt, round_off};
   for (const auto& loading : {fastnorm::Loading<>::approach(), fastnorm::Loading<>::force(5e4)}) {
     Eigen::VectorXd h = problem.h;
     if (loading.control == fastnorm::Control::approach) h.array() -= 5e-5;
@@ -90,7 +92,7 @@ TEST_CASE("Every solver reports the residual it computed", "[sequence][workspace
       } else {
         // The join check lets no element in deeper than τ · max|h|: 1000 ε for NORM and
         // wherever set so, 3e-5 by default for the reduced solvers (solver_options.hpp).
-        const double tau = tolerance ? *tolerance : spec.is_reduced() ? 3e-5 : 1000 * 2.220446049250313e-16;
+        const double tau = tolerance ? *tolerance : spec.is_reduced() ? 3e-5 : round_off;
         CHECK(solution.residual * (solution.approach - h.minCoeff()) <= tau * h.cwiseAbs().maxCoeff());
       }
     }
