@@ -63,8 +63,7 @@ TEST_CASE("solve with a workspace is what solve and solve_next do", "[sequence][
 TEST_CASE("Every solver reports the residual it computed", "[sequence][workspace]") {
   const Problem problem = indenter(2e-4);
   // Each active-set solver at its own join tolerance, and the reduced ones also at NORM's.
-  const double round_off = 1000 * std::numeric_limits<double>::epsilon();  // NORM's τ
-  const std::optional<double> tolerances[] = {std::nullopt, round_off};
+  const std::optional<double> tolerances[] = {std::nullopt, 1000 * std::numeric_limits<double>::epsilon()};
   for (const auto& loading : {fastnorm::Loading<>::approach(), fastnorm::Loading<>::force(5e4)}) {
     Eigen::VectorXd h = problem.h;
     if (loading.control == fastnorm::Control::approach) h.array() -= 5e-5;
@@ -90,9 +89,9 @@ TEST_CASE("Every solver reports the residual it computed", "[sequence][workspace
         CHECK(solution.residual <= 1e-9);
         CHECK(solution.residual == Approx(error / depth).margin(1e-11));
       } else {
-        // The join check lets no element in deeper than τ · max|h|: 1000 ε for NORM and
-        // wherever set so, 3e-5 by default for the reduced solvers (solver_options.hpp).
-        const double tau = tolerance ? *tolerance : spec.is_reduced() ? 3e-5 : round_off;
+        // The join check lets no element in deeper than τ · max|h|: the tolerance set, else
+        // 1000 ε for NORM and 3e-5 for the reduced solvers (ActiveSetOptions::join_tolerance).
+        const double tau = spec.active_set.join_tolerance(!spec.is_reduced());
         CHECK(solution.residual * (solution.approach - h.minCoeff()) <= tau * h.cwiseAbs().maxCoeff());
       }
     }
