@@ -7,6 +7,7 @@
 #include <Eigen/Core>
 #include <cmath>
 #include <cstdlib>
+#include <memory>
 #include <type_traits>
 #include <vector>
 
@@ -87,17 +88,42 @@ class InfluenceTable {
   using Matrix = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;
 
   InfluenceTable(const Grid<Scalar>& grid, const Material<Scalar>& material)
-      : grid_(grid), combined_modulus_(material.combined_modulus()), table_(checked_rows(grid), grid.my()) {
+      : grid_(grid), combined_modulus_(material.combined_modulus()) {
+    auto coefficients = std::make_shared<Matrix>(checked_rows(grid), grid.my());
     const Scalar a = grid.dx() / 2, b = grid.dy() / 2;
     const Index centre = grid.mx() - 1;
     for (Index dj = 0; dj < grid.my(); ++dj) {
       for (Index di = 0; di < grid.mx(); ++di) {
-        table_(centre + di, dj) = love_coefficient<Scalar>(static_cast<Scalar>(di) * grid.dx(),
-                                                           static_cast<Scalar>(dj) * grid.dy(), a, b,
-                                                           combined_modulus_);
-        table_(centre - di, dj) = table_(centre + di, dj);  // even in x
+        (*coefficients)(centre + di, dj) = love_coefficient<Scalar>(static_cast<Scalar>(di) * grid.dx(),
+                                                                    static_cast<Scalar>(dj) * grid.dy(), a, b,
+                                                                    combined_modulus_);
+        (*coefficients)(centre - di, dj) = (*coefficients)(centre + di, dj);  // even in x
       }
     }
+    stride_ = coefficients->rows();
+    origin_ = coefficients->data() + centre;
+    coefficients_ = std::move(coefficients);
+  }
+
+  /// The table of `grid`, read from `larger`'s coefficients, which it shares: nothing is
+  /// computed or copied. A coefficient depends only on its offset, the element sizes and
+  /// E*, so this equals InfluenceTable(grid, material) to the last bit. What a model that
+  /// meets many grid sizes uses (ReducedSolver::for_grid), so that a new size builds no
+  /// table.
+  /// @throws fastnorm::invalid_argument if `larger` does not cover `grid` (covers)
+  InfluenceTable(const InfluenceTable& larger, const Grid<Scalar>& grid)
+      : grid_(grid), combined_modulus_(larger.combined_modulus_) {
+    FASTNORM_CHECK(larger.covers(grid), "InfluenceTable: the larger table must cover grid (the same element sizes, "
+                                        "no more elements either way)");
+    coefficients_ = larger.coefficients_;
+    origin_ = larger.origin_;
+    stride_ = larger.stride_;
+  }
+
+  /// Whether this table holds every coefficient of `grid`: the same element sizes, and no
+  /// more elements either way (the origin does not matter).
+  bool covers(const Grid<Scalar>& grid) const {
+    return grid.mx() <= grid_.mx() && grid.my() <= grid_.my() && grid.dx() == grid_.dx() && grid.dy() == grid_.dy();
   }
 
   const Grid<Scalar>& grid() const { return grid_; }
@@ -105,20 +131,23 @@ class InfluenceTable {
   Scalar combined_modulus() const { return combined_modulus_; }
 
   /// C for an offset of (di, dj) elements; either sign.
-  Scalar at_offset(Index di, Index dj) const { return table_(grid_.mx() - 1 + di, std::abs(dj)); }
+  Scalar at_offset(Index di, Index dj) const { return column(dj)[di]; }
 
   /// C_kl: displacement at element k due to unit pressure on element l (m/Pa).
   Scalar operator()(Index k, Index l) const {
     return at_offset(grid_.i_of(k) - grid_.i_of(l), grid_.j_of(k) - grid_.j_of(l));
   }
 
-  /// The stored table: table()(mx − 1 + di, dj) = C(di·dx, dj·dy), |di| < mx, 0 ≤ dj < my.
-  const Matrix& table() const { return table_; }
+  /// The table: table()(mx − 1 + di, dj) = C(di·dx, dj·dy), |di| < mx, 0 ≤ dj < my (a view
+  /// of the stored coefficients, which may be a larger table's).
+  Eigen::Map<const Matrix, 0, Eigen::OuterStride<>> table() const {
+    return {column(0) - (grid_.mx() - 1), 2 * grid_.mx() - 1, grid_.my(), Eigen::OuterStride<>(stride_)};
+  }
 
   /// C(di, dj) for di = first_di … first_di + length − 1 (|di| < mx): a forward slice of
   /// one table column, no copy.
   auto run(Index first_di, Index dj, Index length) const {
-    return table_.col(std::abs(dj)).segment(grid_.mx() - 1 + first_di, length);
+    return Eigen::Map<const Vector>(column(dj) + first_di, length);
   }
 
   /// Dense symmetric block C_II for the elements `set` (each < grid.size()).
@@ -203,7 +232,7 @@ class InfluenceTable {
     for (Index row = 0; row < grid_.my(); ++row) {
       // C(i_t − i, row − j) for i_t = 0…mx−1: a forward slice of one table column (even in x).
       displacement.segment(row * mx, mx) +=
-          pressure * table_.col(std::abs(row - j)).segment(mx - 1 - i, mx);
+          pressure * run(-i, row - j, mx);
     }
   }
 
@@ -233,9 +262,15 @@ class InfluenceTable {
     return 2 * grid.mx() - 1;
   }
 
+  /// C(di, dj) at [di], |di| < mx: column |dj| of the coefficients from di = 0.
+  const Scalar* column(Index dj) const { return origin_ + std::abs(dj) * stride_; }
+
   Grid<Scalar> grid_;
   Scalar combined_modulus_;
-  Matrix table_;
+  // Rows: offsets di; columns: |dj|. Possibly a larger grid's (shared, never changed).
+  std::shared_ptr<const Matrix> coefficients_;
+  const Scalar* origin_ = nullptr;  // C(0, 0) in coefficients_
+  Index stride_ = 0;                // between columns
 };
 
 }  // namespace fastnorm

@@ -140,10 +140,11 @@ class ReducedSolver : public detail::SolverBase<ReducedSolver<Basis, Scalar>, Re
   std::size_t table_bytes() const { return tables_->used_bytes(); }
 
  private:
-  /// With `shared` tables if they cover `grid`; else tables of its own.
+  /// With `shared` tables and their extent's influence coefficients if they cover `grid`;
+  /// else tables and coefficients of its own.
   ReducedSolver(const Grid<Scalar>& grid, const Material<Scalar>& material, Basis basis, Options options,
                 std::shared_ptr<detail::SegmentTables<Scalar>> shared)
-      : influence_(std::make_shared<const InfluenceTable<Scalar>>(grid, material)),
+      : influence_(influence_for(grid, material, shared.get())),
         material_(material),
         basis_(std::move(basis)),
         options_(options) {
@@ -154,6 +155,17 @@ class ReducedSolver : public detail::SolverBase<ReducedSolver<Basis, Scalar>, Re
   }
 
   using Galerkin = detail::GalerkinSetSolver<Basis, Scalar>;
+
+  /// The influence table of `grid`: the coefficients of `shared`'s extent if it covers the
+  /// grid (nothing computed), else its own.
+  static std::shared_ptr<const InfluenceTable<Scalar>> influence_for(const Grid<Scalar>& grid,
+                                                                      const Material<Scalar>& material,
+                                                                      const detail::SegmentTables<Scalar>* shared) {
+    if (shared && shared->covers(grid, material.combined_modulus())) {
+      return std::make_shared<const InfluenceTable<Scalar>>(shared->extent(), grid);
+    }
+    return std::make_shared<const InfluenceTable<Scalar>>(grid, material);
+  }
 
   std::shared_ptr<const InfluenceTable<Scalar>> influence_;
   Material<Scalar> material_;

@@ -145,6 +145,32 @@ TEST_CASE("Dense blocks and displacements read the same table", "[influence]") {
   CHECK_THROWS_WITH(table.displacement(Eigen::VectorXd::Zero(3)), Catch::Matchers::Contains("pressure"));
 }
 
+TEST_CASE("A table read from a larger one is the table built anew, to the last bit", "[influence]") {
+  const fastnorm::Material<> steel(2.1e11, 0.3);
+  const fastnorm::InfluenceTable<> larger(fastnorm::Grid<>(16, 12, 0.4e-3, 0.6e-3), steel);
+  // Another origin, fewer elements either way: every coefficient, block and displacement is
+  // the fresh table's, and add_displacement reads the same columns.
+  const fastnorm::Grid<> grid(9, 6, 0.4e-3, 0.6e-3, -1e-3, 2e-3);
+  const fastnorm::InfluenceTable<> read(larger, grid);
+  const fastnorm::InfluenceTable<> fresh(grid, steel);
+  CHECK(read.grid().mx() == 9);
+  CHECK(read.combined_modulus() == fresh.combined_modulus());
+  CHECK(read.table() == fresh.table());
+  for (Eigen::Index di = -8; di <= 8; ++di) {
+    for (Eigen::Index dj = -5; dj <= 5; ++dj) CHECK(read.at_offset(di, dj) == fresh.at_offset(di, dj));
+  }
+  Eigen::VectorXd by_read = Eigen::VectorXd::Zero(grid.size()), by_fresh = by_read;
+  read.add_displacement(23, 1e8, by_read);
+  fresh.add_displacement(23, 1e8, by_fresh);
+  CHECK(by_read == by_fresh);
+  CHECK(larger.covers(grid));
+  CHECK_FALSE(larger.covers(fastnorm::Grid<>(17, 12, 0.4e-3, 0.6e-3)));
+  CHECK_FALSE(larger.covers(fastnorm::Grid<>(16, 13, 0.4e-3, 0.6e-3)));
+  CHECK_FALSE(larger.covers(fastnorm::Grid<>(9, 6, 0.41e-3, 0.6e-3)));
+  CHECK_THROWS_WITH(fastnorm::InfluenceTable<>(larger, fastnorm::Grid<>(17, 12, 0.4e-3, 0.6e-3)),
+                    Catch::Matchers::Contains("cover grid"));
+}
+
 TEMPLATE_TEST_CASE("Kernel in float, double and long double", "[influence]", float, double, long double) {
   const fastnorm::Grid<TestType> grid(30, 20, TestType(0.3e-3), TestType(0.45e-3));
   const fastnorm::InfluenceTable<TestType> table(grid, fastnorm::Material<TestType>(TestType(2.1e11), TestType(0.3)));

@@ -169,6 +169,10 @@ TEMPLATE_TEST_CASE("A solver for_grid shares the tables and answers as a new sol
   const fastnorm::ReducedSolver<TestType> alone(grid, steel);
   CHECK(sibling.grid().mx() == grid.mx());
   CHECK(sibling.grid().x0() == grid.x0());
+  // Its influence coefficients are the largest solver's, read in place (none computed).
+  const auto centre = [](const auto& solver) { return solver.influence().table().data() + (solver.grid().mx() - 1); };
+  CHECK(centre(sibling) == centre(largest));
+  CHECK(centre(alone) != centre(largest));
   for (const auto& loading : {fastnorm::Loading<>::approach(), fastnorm::Loading<>::force(2e3)}) {
     const auto reference = alone.solve(h, loading);
     const auto solution = sibling.solve(h, loading);
@@ -185,6 +189,7 @@ TEMPLATE_TEST_CASE("A solver for_grid shares the tables and answers as a new sol
   const auto beyond = largest.for_grid(fastnorm::Grid<>(grid.mx() + 10, grid.my(), grid.dx(), grid.dy()));
   const auto other_sizes = largest.for_grid(fastnorm::Grid<>(grid.mx(), grid.my(), grid.dx() * 1.5, grid.dy()));
   CHECK(beyond.table_bytes() == 0);
+  CHECK(centre(beyond) != centre(largest));
   CHECK(other_sizes.table_bytes() == 0);
   const std::size_t shared = largest.table_bytes();
   REQUIRE(beyond.solve(Eigen::VectorXd::Constant(beyond.grid().size(), -1e-6), fastnorm::Loading<>::approach()).ok());

@@ -116,11 +116,15 @@ class SegmentTables {
   /// Whether these tables serve a solver of `influence`: the same element sizes and E*, and
   /// no more elements either way than the extent's grid.
   bool covers(const InfluenceTable<Scalar>& influence) const {
-    const Grid<Scalar>& grid = influence.grid();
-    const Grid<Scalar>& largest = extent_->grid();
-    return grid.mx() <= largest.mx() && grid.my() <= largest.my() && grid.dx() == largest.dx() &&
-           grid.dy() == largest.dy() && influence.combined_modulus() == extent_->combined_modulus();
+    return covers(influence.grid(), influence.combined_modulus());
   }
+  /// The same for a solver on `grid` with E* `combined_modulus` (Pa).
+  bool covers(const Grid<Scalar>& grid, Scalar combined_modulus) const {
+    return extent_->covers(grid) && combined_modulus == extent_->combined_modulus();
+  }
+  /// The influence table of the largest grid served, whose coefficients the solvers of the
+  /// grids it covers read (InfluenceTable's sharing constructor).
+  const InfluenceTable<Scalar>& extent() const { return *extent_; }
 
   /// The block a solver uses for a segment of `count` elements, `block_of(count)` (n × q),
   /// built once; every table is built from these. Blocks and their pseudo-inverses are
