@@ -111,13 +111,10 @@ class InfluenceTable {
   /// meets many grid sizes uses (ReducedSolver::for_grid), so that a new size builds no
   /// table.
   /// @throws fastnorm::invalid_argument if `larger` does not cover `grid` (covers)
-  InfluenceTable(const InfluenceTable& larger, const Grid<Scalar>& grid)
-      : grid_(grid), combined_modulus_(larger.combined_modulus_) {
+  InfluenceTable(const InfluenceTable& larger, const Grid<Scalar>& grid) : InfluenceTable(larger) {
     FASTNORM_CHECK(larger.covers(grid), "InfluenceTable: the larger table must cover grid (the same element sizes, "
                                         "no more elements either way)");
-    coefficients_ = larger.coefficients_;
-    origin_ = larger.origin_;
-    stride_ = larger.stride_;
+    grid_ = grid;  // a copy shares the coefficients: only the grid it is read for changes
   }
 
   /// Whether this table holds every coefficient of `grid`: the same element sizes, and no
@@ -269,7 +266,8 @@ class InfluenceTable {
   Scalar combined_modulus_;
   // Rows: offsets di; columns: |dj|. Possibly a larger grid's (shared, never changed).
   std::shared_ptr<const Matrix> coefficients_;
-  const Scalar* origin_ = nullptr;  // C(0, 0) in coefficients_
+  // Derived from coefficients_, kept so that a read in the solvers' loops is one load.
+  const Scalar* origin_ = nullptr;  // C(0, 0)
   Index stride_ = 0;                // between columns
 };
 
