@@ -7,13 +7,14 @@ function(fastnorm_add_warnings target)
   endif()
 endfunction()
 
-# Counts the executable's calls of malloc and operator new(std::size_t) (mangled _Znwm on
-# 64-bit Linux), and the bytes they hold until free and operator delete (_ZdlPv, _ZdlPvm),
-# through the linker's --wrap: examples/support/allocation_counter.hpp.
+# Counts the executable's calls of malloc (through the linker's --wrap) and every call of the
+# global operator new (replaced), and the bytes they hold until free and operator delete:
+# examples/support/allocation_counter.hpp.
+# Not under ThreadSanitizer, whose runtime defines operator new itself (the link would fail).
 function(fastnorm_count_allocations target)
-  if(CMAKE_SYSTEM_NAME STREQUAL "Linux" AND CMAKE_CXX_COMPILER_ID MATCHES "GNU|Clang" AND CMAKE_SIZEOF_VOID_P EQUAL 8)
-    target_link_options(${target} PRIVATE "LINKER:--wrap=malloc" "LINKER:--wrap=_Znwm" "LINKER:--wrap=free"
-                        "LINKER:--wrap=_ZdlPv" "LINKER:--wrap=_ZdlPvm")
+  if(CMAKE_SYSTEM_NAME STREQUAL "Linux" AND CMAKE_CXX_COMPILER_ID MATCHES "GNU|Clang" AND CMAKE_SIZEOF_VOID_P EQUAL 8
+     AND NOT CMAKE_CXX_FLAGS MATCHES "-fsanitize=thread")
+    target_link_options(${target} PRIVATE "LINKER:--wrap=malloc" "LINKER:--wrap=free")
     target_compile_definitions(${target} PRIVATE FASTNORM_COUNT_MALLOC)
   endif()
 endfunction()

@@ -1,16 +1,19 @@
-// Counts the heap allocations of an executable's own code, and the bytes they hold: the
-// linker's --wrap sends its calls of malloc (Eigen's allocator) and of operator
-// new(std::size_t) (the containers'; mangled _Znwm on 64-bit Linux), and of free and
-// operator delete, here. Include from one source file of an executable that CMake's
-// fastnorm_count_allocations(target) links with the wrap (it then defines
-// FASTNORM_COUNT_MALLOC); elsewhere allocation_count() and the byte counts are -1.
-// (Allocations made inside the shared libstdc++ are not seen.)
+// Counts the heap allocations of an executable, and the bytes they hold: the linker's --wrap
+// sends the executable's own calls of malloc and free (Eigen's allocator) here, and this file
+// replaces the global operator new and delete, which every part of the program calls,
+// libstdc++'s compiled code too (a std::string built inside the shared library, e.g. from a
+// long literal, is counted; a wrap of operator new would not see it). Include from one source
+// file of an executable that CMake's fastnorm_count_allocations(target) links with the wrap
+// (it then defines FASTNORM_COUNT_MALLOC); elsewhere allocation_count() and the byte counts
+// are -1. (Allocations by malloc inside shared libraries are still not seen.)
 #pragma once
 
 #include <atomic>
 #include <cstddef>
 #if defined(FASTNORM_COUNT_MALLOC)
 #include <malloc.h>  // malloc_usable_size (glibc)
+
+#include <new>
 #endif
 
 namespace fastnorm_example {
@@ -71,25 +74,30 @@ extern "C" void* __wrap_malloc(std::size_t size) {
   fastnorm_example::count_allocated(block);
   return block;
 }
-extern "C" void* __real__Znwm(std::size_t size);
-extern "C" void* __wrap__Znwm(std::size_t size) {
-  void* block = __real__Znwm(size);
-  fastnorm_example::count_allocated(block);
-  return block;
-}
 extern "C" void __real_free(void* block);
 extern "C" void __wrap_free(void* block) {
   fastnorm_example::count_freed(block);
   __real_free(block);
 }
-extern "C" void __real__ZdlPv(void* block);
-extern "C" void __wrap__ZdlPv(void* block) {
-  fastnorm_example::count_freed(block);
-  __real__ZdlPv(block);
+
+// The replaceable global allocation functions ([new.delete]), on the unwrapped malloc and
+// free so that a block is counted once. The array and aligned forms keep their standard
+// definitions: the array forms call these, and the aligned ones pair among themselves.
+void* operator new(std::size_t size) {
+  void* block = __real_malloc(size == 0 ? 1 : size);
+  if (block == nullptr) throw std::bad_alloc();
+  fastnorm_example::count_allocated(block);
+  return block;
 }
-extern "C" void __real__ZdlPvm(void* block, std::size_t size);
-extern "C" void __wrap__ZdlPvm(void* block, std::size_t size) {
-  fastnorm_example::count_freed(block);
-  __real__ZdlPvm(block, size);
+void* operator new(std::size_t size, const std::nothrow_t&) noexcept {
+  void* block = __real_malloc(size == 0 ? 1 : size);
+  if (block != nullptr) fastnorm_example::count_allocated(block);
+  return block;
 }
+void operator delete(void* block) noexcept {
+  fastnorm_example::count_freed(block);
+  __real_free(block);
+}
+void operator delete(void* block, std::size_t /*size*/) noexcept { operator delete(block); }
+void operator delete(void* block, const std::nothrow_t&) noexcept { operator delete(block); }
 #endif

@@ -10,6 +10,7 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 
 namespace fastnorm {
 
@@ -23,7 +24,7 @@ namespace detail {
 
 /// Builds "what (got value)" for error messages; full precision for floating values.
 template <typename Value>
-std::string describe(const std::string& what, const Value& value) {
+std::string describe(std::string_view what, const Value& value) {
   std::ostringstream out;
   out.precision(17);
   out << what << " (got " << value << ")";
@@ -31,10 +32,14 @@ std::string describe(const std::string& what, const Value& value) {
 }
 
 /// Throws fastnorm::invalid_argument("<what> must be positive (got <value>)") unless `value`
-/// is finite and positive; `what` names the argument (and its unit).
+/// is finite and positive; `what` names the argument (and its unit). The names of the checks
+/// are views, built into a string only when a check fails: a check that passes allocates
+/// nothing (a time loop validates its options at every step).
 template <typename Value>
-void check_positive(const Value& value, const std::string& what) {
-  if (!(std::isfinite(value) && value > 0)) throw invalid_argument("fastnorm: " + describe(what + " must be positive", value));
+void check_positive(const Value& value, std::string_view what) {
+  if (!(std::isfinite(value) && value > 0)) {
+    throw invalid_argument("fastnorm: " + describe(std::string(what) + " must be positive", value));
+  }
 }
 
 /// A number as a person writes it in a message (six significant digits: "0.03", "1e-13").

@@ -7,6 +7,7 @@
 #include <Eigen/Core>
 #include <cmath>
 #include <string>
+#include <string_view>
 
 #include "fastnorm/error.hpp"
 #include "fastnorm/grid.hpp"
@@ -65,16 +66,16 @@ namespace detail {
 /// and finite and the creepages finite.
 template <typename Scalar>
 void check_tangential_input(const Grid<Scalar>& grid, const Solution<Scalar>& normal, Scalar friction,
-                            const Creepage<Scalar>& creepage, const std::string& who) {
+                            const Creepage<Scalar>& creepage, std::string_view who) {
   FASTNORM_CHECK(normal.pressure.size() == grid.size() && normal.in_contact.size() == grid.size(),
-                 describe(who + ": normal must be a solution on this grid (elements)", normal.pressure.size()));
+                 describe(std::string(who) + ": normal must be a solution on this grid (elements)", normal.pressure.size()));
   FASTNORM_CHECK(normal.ok() || normal.status == Status::no_contact,
-                 who + ": normal has no usable answer (status " + to_string(normal.status) + ")");
+                 std::string(who) + ": normal has no usable answer (status " + to_string(normal.status) + ")");
   FASTNORM_CHECK(std::isfinite(friction) && friction > 0,
-                 describe(who + ": friction must be positive and finite", friction));
+                 describe(std::string(who) + ": friction must be positive and finite", friction));
   FASTNORM_CHECK(std::isfinite(creepage.longitudinal) && std::isfinite(creepage.lateral) && std::isfinite(creepage.spin) &&
                      std::isfinite(creepage.spin_centre_x) && std::isfinite(creepage.spin_centre_y),
-                 who + ": creepage must be finite (longitudinal, lateral, spin, spin centre)");
+                 std::string(who) + ": creepage must be finite (longitudinal, lateral, spin, spin centre)");
 }
 
 /// Whether element k carries pressure, so that it takes part in the tangential problem.

@@ -346,10 +346,14 @@ class ActiveSetLoop {
     }
   }
 
+  /// The set and the joining elements (both sorted) merged through `kept`, whose storage is
+  /// free until the next drop: std::inplace_merge would take a temporary buffer from the heap
+  /// at every join.
   void join() {
-    auto& active = work_.active;
-    active.insert(active.end(), work_.joining.begin(), work_.joining.end());
-    std::inplace_merge(active.begin(), active.end() - static_cast<std::ptrdiff_t>(work_.joining.size()), active.end());
+    auto& merged = work_.kept;
+    merged.resize(work_.active.size() + work_.joining.size());
+    std::merge(work_.active.begin(), work_.active.end(), work_.joining.begin(), work_.joining.end(), merged.begin());
+    work_.active.swap(merged);
   }
 
   /// The pressures `pressure` on `set` (negative ones clipped) as the answer, into the

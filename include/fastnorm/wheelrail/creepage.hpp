@@ -7,6 +7,7 @@
 #include <Eigen/Core>
 #include <cmath>
 #include <string>
+#include <string_view>
 
 #include "fastnorm/error.hpp"
 #include "fastnorm/tangential_problem.hpp"
@@ -40,13 +41,13 @@ struct WheelsetVelocity {
 
 /// @throws fastnorm::invalid_argument, naming `who`, for velocities that are not finite or
 ///         a forward speed of zero (creepages are velocities over the rolling speed)
-inline void check_velocity(const WheelsetVelocity& velocity, const std::string& who) {
+inline void check_velocity(const WheelsetVelocity& velocity, std::string_view who) {
   const auto finite = [](double value) { return std::isfinite(value); };
   FASTNORM_CHECK(finite(velocity.lateral) && finite(velocity.vertical) && finite(velocity.roll_rate) &&
                      finite(velocity.yaw_rate) && finite(velocity.pitch_rate),
-                 who + ": velocity must be finite (lateral, vertical, roll_rate, yaw_rate, pitch_rate)");
+                 std::string(who) + ": velocity must be finite (lateral, vertical, roll_rate, yaw_rate, pitch_rate)");
   FASTNORM_CHECK(std::isfinite(velocity.forward) && velocity.forward != 0,
-                 fastnorm::detail::describe(who + ": velocity.forward must be finite and not zero (m/s): creepages "
+                 fastnorm::detail::describe(std::string(who) + ": velocity.forward must be finite and not zero (m/s): creepages "
                                                   "are velocities over the rolling speed",
                                             velocity.forward));
 }

@@ -9,6 +9,7 @@
 #include <limits>
 #include <optional>
 #include <string>
+#include <string_view>
 
 #include "fastnorm/detail/object_id.hpp"
 #include "fastnorm/error.hpp"
@@ -39,10 +40,10 @@ struct PoseLimits {
 
 /// @throws fastnorm::invalid_argument naming the coordinate of `pose` that is not finite or
 ///         outside PoseLimits; `what` names the caller
-inline void check_pose(const WheelsetPose& pose, const std::string& what) {
+inline void check_pose(const WheelsetPose& pose, std::string_view what) {
   auto check = [&](double value, double limit, const char* name, const char* unit) {
     FASTNORM_CHECK(std::isfinite(value) && std::abs(value) < limit,
-                   fastnorm::detail::describe(what + ": " + name + " must lie within ±" + fastnorm::detail::to_text(limit) + " " +
+                   fastnorm::detail::describe(std::string(what) + ": " + name + " must lie within ±" + fastnorm::detail::to_text(limit) + " " +
                                                   unit,
                                               value));
   };
