@@ -12,7 +12,6 @@
 #include <cstddef>
 #if defined(FASTNORM_COUNT_MALLOC)
 #include <malloc.h>  // malloc_usable_size (glibc)
-
 #include <new>
 #endif
 

@@ -7,6 +7,7 @@
 #include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <limits>
 #include <optional>
 #include <string>
@@ -351,8 +352,9 @@ class ActiveSetLoop {
   /// at every join.
   void join() {
     auto& merged = work_.kept;
-    merged.resize(work_.active.size() + work_.joining.size());
-    std::merge(work_.active.begin(), work_.active.end(), work_.joining.begin(), work_.joining.end(), merged.begin());
+    merged.clear();
+    std::merge(work_.active.begin(), work_.active.end(), work_.joining.begin(), work_.joining.end(),
+               std::back_inserter(merged));
     work_.active.swap(merged);
   }
 
