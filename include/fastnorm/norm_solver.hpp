@@ -111,7 +111,11 @@ class NormSolver : public detail::SolverBase<NormSolver<Scalar>, NormWorkspace<S
     const Options options = workspace.start_.limited(options_);
     Solution<Scalar> solution = detail::solve_active_set(*influence_, undeformed_distance, loading, options,
                                                          set_solver, workspace.loop_, workspace.start_.contact_set());
-    workspace.start_.remember_set(solution);
+    if (solution.status == Status::iteration_limit) {
+      workspace.start_.continue_loop(workspace.loop_.next_set);
+    } else {
+      workspace.start_.remember_set(solution);
+    }
     return solution;
   }
 

@@ -111,9 +111,13 @@ class ReducedSolver : public detail::SolverBase<ReducedSolver<Basis, Scalar>, Re
     }
     workspace.memory_.next_problem();
     detail::GalerkinSetSolver<Basis, Scalar> set_solver(*influence_, basis_, *tables_, workspace.memory_);
-    return detail::solve_active_set(*influence_, undeformed_distance, loading,
-                                    workspace.start_.limited(options_.active_set), set_solver, workspace.loop_,
-                                    workspace.start_.contact_set());
+    Solution<Scalar> solution = detail::solve_active_set(*influence_, undeformed_distance, loading,
+                                                         workspace.start_.limited(options_.active_set), set_solver,
+                                                         workspace.loop_, workspace.start_.contact_set());
+    // The start is left as it was, but after a solve stopped by the iteration limit: then the
+    // set the loop would have solved next (WarmStart::continue_loop).
+    if (solution.status == Status::iteration_limit) workspace.start_.continue_loop(workspace.loop_.next_set);
+    return solution;
   }
 
   /// The normal stiffness dFn/dδ (N/m) of the reduced problem at the contact set of

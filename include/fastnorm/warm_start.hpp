@@ -17,7 +17,9 @@ namespace fastnorm {
 ///
 /// A solver fills it after each solve with what it uses to start the next one (NORM its
 /// contact set, CG its pressures and contact set; the reduced solvers leave it as it was,
-/// because their answer depends on the path of the active set: docs/method.md §3). A
+/// because their answer depends on the path of the active set: docs/method.md §3). After a
+/// solve stopped by its iteration limit, NORM and the reduced solvers leave the set their
+/// active-set loop would have solved next, so that the next solve continues the loop. A
 /// caller may set it, e.g. to the previous contact set shifted to a new grid; the next
 /// solve checks it against its grid.
 template <typename Scalar = double>
@@ -77,6 +79,11 @@ class WarmStart {
       if (solution.in_contact(k)) contact_set_.push_back(k);
     }
   }
+
+  /// Where an active-set loop that stopped at its iteration limit would have gone on:
+  /// `next_set` (ActiveSetWorkspace::next_set), without pressures; the next solve started
+  /// from it continues that loop (docs/wheel-rail.md §9, the iteration budget).
+  void continue_loop(const std::vector<Index>& next_set) { set_contact_set(next_set); }
 
   /// The contact set and the pressures of a usable solution (nothing otherwise).
   void remember_pressure(const Solution<Scalar>& solution) {

@@ -149,3 +149,36 @@ TEST_CASE("A workspace's iteration limit bounds the next solves below the option
   fastnorm::WarmStart<> start;
   CHECK_THROWS_WITH(start.limit_iterations(-2), Catch::Matchers::Contains("iteration limit must be >= 0"));
 }
+
+TEST_CASE("A solve stopped by its iteration limit is continued by the next", "[sequence][warm]") {
+  // After a solve that reached the workspace's limit, NORM and the reduced solvers leave in
+  // the start the set their active-set loop would have solved next (WarmStart::continue_loop):
+  // solves of one iteration each, one after the other, take the loop's own steps and end on
+  // its answer, in as many iterations in all.
+  for (const auto& loading : {fastnorm::Loading<>::approach(), fastnorm::Loading<>::force(5e4)}) {
+    const auto sequence = moving_indenter(24, 1, loading.control == fastnorm::Control::approach ? 2e-5 : 0.0);
+    const auto& h = sequence.h.front();
+    for (const char* name : {"norm", "elliptic", "polynomial:4"}) {
+      INFO(name << (loading.control == fastnorm::Control::approach ? ", approach control" : ", force control"));
+      const fastnorm::AnySolver<> solver(name, sequence.grid, steel);
+      fastnorm::AnySolver<>::Workspace workspace;
+      const auto free_solve = solver.solve(h, loading, workspace);
+      REQUIRE(free_solve.status == fastnorm::Status::converged);
+      REQUIRE(free_solve.iterations >= 2);
+      workspace.forget();
+      workspace.start().limit_iterations(1);
+      int spent = 0;
+      fastnorm::Solution<> continued;
+      do {
+        continued = solver.solve(h, loading, workspace);
+        spent += continued.iterations;
+        if (continued.status == fastnorm::Status::iteration_limit) CHECK_FALSE(workspace.start().contact_set().empty());
+      } while (continued.status == fastnorm::Status::iteration_limit && spent < 2 * free_solve.iterations);
+      REQUIRE(continued.status == fastnorm::Status::converged);
+      CHECK(spent == free_solve.iterations);
+      CHECK((continued.in_contact == free_solve.in_contact).all());
+      // A kept factor or assembly updated rather than computed afresh: round-off.
+      CHECK((continued.pressure - free_solve.pressure).cwiseAbs().maxCoeff() <= 1e-12 * free_solve.pressure.maxCoeff());
+    }
+  }
+}

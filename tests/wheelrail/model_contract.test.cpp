@@ -6,6 +6,7 @@
 #include <catch2/catch.hpp>
 #include <fastnorm/fastnorm.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <optional>
 #include <string>
@@ -260,6 +261,28 @@ TEST_CASE("A step spends at most its iteration budget, and reports what it spent
   CHECK(result.status.side == first_limited->first);
   CHECK(result.status.patch == first_limited->second);
   CHECK(result.status.solver_status == fastnorm::Status::iteration_limit);
+  // A budgeted patch goes on from where its loop stopped (the joins it found included),
+  // so that at a pose held fixed the budgeted model reaches the free model's answer within
+  // a few steps; it would repeat its one set forever if it started each step from its answer.
+  wr::WheelsetContact<> free_model(wr::Track(), wr::Wheelset(), coarse("elliptic"));
+  const auto& free_result = free_model.evaluate(pose);
+  REQUIRE(free_result.ok());
+  int free_iterations = 0;
+  for (const auto& wheel : free_result.wheels) {
+    for (const auto& patch : wheel.patches) free_iterations = std::max(free_iterations, patch.solution.iterations);
+  }
+  for (int step = 1; step < 4 * free_iterations && !tight.evaluate(pose).ok(); ++step) {
+  }
+  const auto& settled = tight.evaluate(pose);
+  REQUIRE(settled.ok());
+  for (std::size_t w = 0; w < 2; ++w) {
+    REQUIRE(settled.wheels[w].patches.size() == free_result.wheels[w].patches.size());
+    for (std::size_t k = 0; k < settled.wheels[w].patches.size(); ++k) {
+      const auto& got = settled.wheels[w].patches[k].solution, &expected = free_result.wheels[w].patches[k].solution;
+      CHECK((got.in_contact == expected.in_contact).all());
+      CHECK(got.normal_force == Approx(expected.normal_force).epsilon(1e-12));
+    }
+  }
   // The budget is the next step's too; 0 lifts it.
   tight.set_iteration_budget(0);
   CHECK(tight.evaluate(pose).ok());

@@ -31,6 +31,11 @@ template <typename Scalar>
 struct ActiveSetWorkspace {
   using Index = Eigen::Index;
   std::vector<Index> active, kept, candidates, joining, admissible_set;
+  /// After a solve that stopped at its iteration limit: the set its loop would have solved
+  /// next (the kept elements after a drop, the set and the joining elements after a join
+  /// check), sorted; empty after any other end. A solve started from it continues that loop
+  /// (ActiveSetLoop::run).
+  std::vector<Index> next_set;
   std::vector<Index> visited_elements;   // every set of this solve, one after the other
   std::vector<std::size_t> visited_ends;  // where each ends in visited_elements
   ScratchMatrix<Scalar> columns;          // right-hand sides in, pressures out (n × 1 or n × 2)
@@ -55,7 +60,9 @@ struct ActiveSetWorkspace {
   /// together (visited_elements) get two grids' worth and may still grow past it.
   void start_on_grid(std::size_t elements) {
     checks = 0;
-    for (auto* set : {&active, &kept, &candidates, &joining, &admissible_set, &checked_set}) set->reserve(elements);
+    for (auto* set : {&active, &kept, &candidates, &joining, &admissible_set, &checked_set, &next_set}) {
+      set->reserve(elements);
+    }
     admissible_pressure.reserve(elements);
     candidate_columns.reserve(elements);  // per strip: my ≤ elements
     checked_pressure.reserve(elements);
@@ -106,10 +113,16 @@ class ActiveSetLoop {
       : influence_(influence), h_(h), loading_(loading), options_(options), set_solver_(set_solver), work_(work) {}
 
   /// Runs the loop from `start_set` (sorted element numbers), or from step 1's set if empty.
+  /// A run stopped by the iteration limit leaves in `work.next_set` the set it would have
+  /// solved next; a run started from that set takes the steps the stopped one would have
+  /// taken (the sets, not the cycle check's memory of them), so that a solve limited to a
+  /// few iterations a time step and continued at the next is the loop continued across
+  /// steps, not restarted (docs/wheel-rail.md §9, the iteration budget).
   Solution<Scalar> run(const std::vector<Index>& start_set) {
     const Index n_all = influence_.grid().size();
     solution_ = std::move(work_.spare_solution);
     solution_.clear(n_all);
+    work_.next_set.clear();
     if (!choose_start(start_set)) return finish(Status::no_contact, "no element has a negative undeformed distance");
     work_.visited_elements.clear();
     work_.visited_ends.clear();
@@ -140,7 +153,10 @@ class ActiveSetLoop {
       ++solution_.iterations;
       if (!solve_on_set()) return finish(Status::numerical_issue, "factorisation of the system on the active set failed");
       if (drop_non_positive()) {
-        if (solution_.iterations == options_.max_iterations) break;  // report this iterate
+        if (solution_.iterations == options_.max_iterations) {  // report this iterate
+          work_.next_set = work_.kept;
+          break;
+        }
         work_.active.swap(work_.kept);
         continue;
       }
@@ -150,7 +166,11 @@ class ActiveSetLoop {
         store(work_.active, work_.columns.view().data(), approach_);
         return finish(Status::converged, "contact set stable");
       }
-      if (solution_.iterations == options_.max_iterations) break;  // report this iterate
+      if (solution_.iterations == options_.max_iterations) {  // report this iterate
+        std::merge(work_.active.begin(), work_.active.end(), work_.joining.begin(), work_.joining.end(),
+                   std::back_inserter(work_.next_set));
+        break;
+      }
       join();
     }
     // The last iterate, its negative pressures clipped, so the caller can inspect it.

@@ -157,7 +157,8 @@ class WheelsetContact {
   /// first), as qpOASES' nWSR: each solve may take what the solves before it left, but at
   /// least one iteration, so a step spends at most the budget plus one per later patch. A
   /// solve that reaches its share ends with Status::iteration_limit, and the step status
-  /// names it. What a step spent is `iterations` of its result. 0 (the default): no
+  /// names it; an active-set solve so cut goes on at the next step from where its loop
+  /// stopped (docs/wheel-rail.md §9). What a step spent is `iterations` of its result. 0 (the default): no
   /// budget, each solve bounded by its solver's max_iterations alone.
   /// @throws fastnorm::invalid_argument for a negative budget
   void set_iteration_budget(int iterations) {
@@ -400,9 +401,18 @@ class WheelsetContact {
     state.workspace.recycle(std::move(out.solution));  // the last call's answer: its storage
     out.solution = solver.solve(patch.undeformed_distance, Loading<double>::approach(), state.workspace);
     const auto& solution = out.solution;
-    state.contact_set.clear();
-    for (Eigen::Index k = 0; k < solution.in_contact.size(); ++k) {
-      if (solution.in_contact(k)) state.contact_set.push_back(k);
+    // The next step starts from this one's contact set; from where the active-set loop would
+    // have gone on when its iteration budget stopped it (WarmStart::continue_loop), so that a
+    // budgeted patch keeps its joins and converges over the next steps (§9 of
+    // docs/wheel-rail.md). CG leaves no such set: its answer's set, as before.
+    const auto& continuation = state.workspace.start().contact_set();
+    if (solution.status == Status::iteration_limit && !continuation.empty()) {
+      state.contact_set.assign(continuation.begin(), continuation.end());
+    } else {
+      state.contact_set.clear();
+      for (Eigen::Index k = 0; k < solution.in_contact.size(); ++k) {
+        if (solution.in_contact(k)) state.contact_set.push_back(k);
+      }
     }
     out.normal_force = solution.normal_force;
     out.contact_elements = solution.contact_count();
