@@ -7,6 +7,7 @@
 //   trajectory solver=<name> steps=<n> search_us=<t> h_us=<t> solve_us=<t> tangential_us=<t>
 //     total_us=<t> total_p99_us=<t> max_err_vs_norm=<x> max_set_diff=<n> roughness=<x>
 //     roughness_norm=<x> allocations_per_step=<x> allocating_steps=<n> iterations_per_patch=<x>
+//     limited_solves=<n>
 //
 // The wheelset moves forwards at 30 m/s, rolling (pitch rate −V/r0), with the pose's rates
 // by central differences: each step also gives every patch's creep forces (strip theory,
@@ -36,6 +37,11 @@
 //   vehicle solver=<name> wheels=8 threads=<n> step_us=<median> step_p99_us=<t> failed_steps=<n>
 //
 // step_us is the wall time of a whole vehicle step, geometry included.
+//
+// "+cap<N>" (e.g. elliptic+cap3) stops every patch solve after N iterations
+// (SolverSpec::set_max_iterations), and the next step goes on from where it stopped
+// (docs/wheel-rail.md §9, the iteration budget); limited_solves counts the patch solves
+// that ended so.
 //
 // Times are medians per wheel per step (p99 of the total); errors and contact-set
 // differences against NORM on the same h at every 20th step (NORM runs first, on the same
@@ -105,13 +111,16 @@ struct TrajectoryRun {
   double allocations_per_step = -1;
   long allocating_steps = -1;  // steps after the first ten with any allocation inside evaluate
   double iterations_per_patch = 0;  // mean active-set or CG iterations of a patch solve
+  long limited_solves = 0;          // patch solves that ended at their iteration limit
 };
 
-/// A bench name: a solver spec, a start forced by "+warm" or "+cold" (else the default), and
-/// "+fastsim" for creep forces by FASTSIM instead of strip theory (the default).
+/// A bench name: a solver spec, a start forced by "+warm" or "+cold" (else the default), an
+/// iteration cap per patch solve by "+cap<N>", and "+fastsim" for creep forces by FASTSIM
+/// instead of strip theory (the default), in that order.
 struct TrajectorySolver {
   fastnorm::SolverSpec<double> spec;
   std::optional<bool> warm;
+  int cap = 0;  // iterations per patch solve; 0: the solver's own limit
   wr::CreepMethod creep = wr::CreepMethod::strip_theory;
 
   static TrajectorySolver parse(std::string name) {
@@ -123,13 +132,20 @@ struct TrajectorySolver {
       return found;
     };
     if (strip_suffix("+fastsim")) solver.creep = wr::CreepMethod::fastsim;
+    const auto cap_at = name.rfind("+cap");
+    if (cap_at != std::string::npos && cap_at + 4 < name.size() &&
+        name.find_first_not_of("0123456789", cap_at + 4) == std::string::npos) {
+      solver.cap = std::stoi(name.substr(cap_at + 4));
+      FASTNORM_CHECK(solver.cap >= 1, "--trajectory-solvers: +cap<N> needs N >= 1 in " + name);
+      name.resize(cap_at);
+    }
     if (strip_suffix("+warm")) solver.warm = true;
     if (strip_suffix("+cold")) solver.warm = false;
     solver.spec = fastnorm::SolverSpec<double>::parse(name);
     return solver;
   }
   std::string label() const {
-    return spec.name() + (!warm ? "" : *warm ? "+warm" : "+cold") +
+    return spec.name() + (!warm ? "" : *warm ? "+warm" : "+cold") + (cap > 0 ? "+cap" + std::to_string(cap) : "") +
            (creep == wr::CreepMethod::fastsim ? "+fastsim" : "");
   }
   wr::WheelsetContactOptions options() const {
@@ -138,6 +154,7 @@ struct TrajectorySolver {
     options.creep.friction = 0.3;
     options.creep.method = creep;
     options.reduced_warm_start = warm;
+    if (cap > 0) options.solver.set_max_iterations(cap);
     if (warm) options.warm_start = *warm;  // NORM and CG
     return options;
   }
@@ -170,7 +187,10 @@ inline TrajectoryRun run_trajectory(const wr::Track& track, const wr::Wheelset& 
       run.tangential.push_back(wheel.times.tangential);
       run.total.push_back(wheel.times.search + wheel.times.distance + wheel.times.solve);
       force[w] = wheel.normal_force;
-      for (const auto& patch : wheel.patches) iterations += patch.solution.iterations, ++solves;
+      for (const auto& patch : wheel.patches) {
+        iterations += patch.solution.iterations, ++solves;
+        run.limited_solves += patch.solution.status == fastnorm::Status::iteration_limit ? 1 : 0;
+      }
     }
     run.wheel_force.push_back(force);
     if (step % check_every == 0) {
@@ -329,12 +349,12 @@ inline void bench_trajectory(const std::vector<std::string>& solvers, int steps)
     std::printf("trajectory solver=%s steps=%d search_us=%.1f h_us=%.1f solve_us=%.1f tangential_us=%.1f total_us=%.1f "
                 "total_p99_us=%.1f "
                 "max_err_vs_norm=%.3e max_set_diff=%ld roughness=%.3e roughness_norm=%.3e allocations_per_step=%.2f "
-                "allocating_steps=%ld iterations_per_patch=%.2f\n",
+                "allocating_steps=%ld iterations_per_patch=%.2f limited_solves=%ld\n",
                 label.c_str(), steps, 1e6 * quantile(run.search, 0.5),
                 1e6 * quantile(run.distance, 0.5), 1e6 * quantile(run.solve, 0.5), 1e6 * quantile(run.tangential, 0.5),
                 1e6 * quantile(run.total, 0.5),
                 1e6 * quantile(run.total, 0.99), largest(to_norm.error), max_set_diff, roughness(run), roughness(norm),
-                run.allocations_per_step, run.allocating_steps, run.iterations_per_patch);
+                run.allocations_per_step, run.allocating_steps, run.iterations_per_patch, run.limited_solves);
     std::fflush(stdout);
     runs.push_back({solver, std::move(run)});
   }

@@ -19,7 +19,8 @@ namespace fastnorm {
 /// contact set, CG its pressures and contact set; the reduced solvers leave it as it was,
 /// because their answer depends on the path of the active set: docs/method.md §3). After a
 /// solve stopped by its iteration limit, NORM and the reduced solvers leave the set their
-/// active-set loop would have solved next, so that the next solve continues the loop. A
+/// active-set loop would have solved next, and CG its last iterate, so that the next solve
+/// continues the iteration. A
 /// caller may set it, e.g. to the previous contact set shifted to a new grid; the next
 /// solve checks it against its grid.
 template <typename Scalar = double>
@@ -85,10 +86,17 @@ class WarmStart {
   /// from it continues that loop (docs/wheel-rail.md §9, the iteration budget).
   void continue_loop(const std::vector<Index>& next_set) { set_contact_set(next_set); }
 
-  /// The contact set and the pressures of a usable solution (nothing otherwise).
+  /// The contact set and the pressures of a usable solution, or of one cut short by the
+  /// iteration limit (CG's last iterate, from which the next solve goes on); nothing
+  /// otherwise.
   void remember_pressure(const Solution<Scalar>& solution) {
-    remember_set(solution);
-    has_pressure_ = solution.ok() && !contact_set_.empty();
+    contact_set_.clear();
+    has_pressure_ = false;
+    if (!solution.ok() && solution.status != Status::iteration_limit) return;
+    for (Index k = 0; k < solution.in_contact.size(); ++k) {
+      if (solution.in_contact(k)) contact_set_.push_back(k);
+    }
+    has_pressure_ = !contact_set_.empty();
     if (has_pressure_) pressure_ = solution.pressure;
   }
 

@@ -182,3 +182,27 @@ TEST_CASE("A solve stopped by its iteration limit is continued by the next", "[s
     }
   }
 }
+
+TEST_CASE("A CG solve stopped by its iteration limit is continued by the next", "[sequence][warm][cg]") {
+  // CG leaves its cut iterate's pressures as the next start: solves of two iterations
+  // each, one after the other, reach the free solve's answer (to CG's tolerance, as the
+  // warm solves above).
+  const auto sequence = moving_indenter(24, 1, 2e-5);
+  const auto& h = sequence.h.front();
+  const fastnorm::AnySolver<> solver("cg", sequence.grid, steel);
+  fastnorm::AnySolver<>::Workspace workspace;
+  const auto free_solve = solver.solve(h, fastnorm::Loading<>::approach(), workspace);
+  REQUIRE(free_solve.status == fastnorm::Status::converged);
+  REQUIRE(free_solve.iterations > 4);
+  workspace.forget();
+  workspace.start().limit_iterations(2);
+  fastnorm::Solution<> continued;
+  int solves = 0;
+  do {
+    continued = solver.solve(h, fastnorm::Loading<>::approach(), workspace);
+    if (continued.status == fastnorm::Status::iteration_limit) CHECK(workspace.start().has_pressure());
+  } while (continued.status == fastnorm::Status::iteration_limit && ++solves < 10 * free_solve.iterations);
+  REQUIRE(continued.status == fastnorm::Status::converged);
+  INFO("solves of at most 2 iterations: " << solves + 1 << "; the free solve's iterations: " << free_solve.iterations);
+  CHECK((continued.pressure - free_solve.pressure).cwiseAbs().maxCoeff() <= 1e-6 * free_solve.pressure.maxCoeff());
+}

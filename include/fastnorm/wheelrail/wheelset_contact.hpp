@@ -213,7 +213,7 @@ class WheelsetContact {
     result_.pose = pose;
     result_.force.setZero();
     result_.moment.setZero();
-    result_.status = StepStatus{StepStatus::Code::ok, Side::left, -1, Status::not_solved, {}};
+    result_.status.set_ok(Side::left);
     result_.iterations = 0;
     iterations_left_ = iteration_budget_;
     for (Side side : {Side::left, Side::right}) {
@@ -296,7 +296,7 @@ class WheelsetContact {
     wheel.times.distance = detail::seconds_since(clock);
 
     clock = std::chrono::steady_clock::now();
-    wheel.status = StepStatus{StepStatus::Code::ok, side, -1, Status::not_solved, {}};
+    wheel.status.set_ok(side);
     wheel.iterations = 0;
     for (std::size_t k = 0; k < count; ++k) {
       start_from(successors[k], previous, next[k]);
@@ -306,10 +306,7 @@ class WheelsetContact {
       wheel.iterations += patch.solution.iterations;
       iterations_left_ -= patch.solution.iterations;
       if (wheel.status.ok() && !patch.ok()) {
-        wheel.status = {StepStatus::Code::patch_failed, side, static_cast<int>(k), patch.solution.status,
-                        std::string(to_string(side)) + " wheel, patch " + std::to_string(k) + " of " +
-                            std::to_string(count) + ": " + to_string(patch.solution.status) +
-                            (patch.solution.message.empty() ? "" : ": " + patch.solution.message)};
+        wheel.status.set_patch_failed(side, static_cast<int>(k), count, patch.solution.status, patch.solution.message);
       }
     }
     keep_spare_workspaces(previous);
@@ -404,7 +401,7 @@ class WheelsetContact {
     // The next step starts from this one's contact set; from where the active-set loop would
     // have gone on when its iteration budget stopped it (WarmStart::continue_loop), so that a
     // budgeted patch keeps its joins and converges over the next steps (§9 of
-    // docs/wheel-rail.md). CG leaves no such set: its answer's set, as before.
+    // docs/wheel-rail.md; CG's start is its cut answer's set and pressures).
     const auto& continuation = state.workspace.start().contact_set();
     if (solution.status == Status::iteration_limit && !continuation.empty()) {
       state.contact_set.assign(continuation.begin(), continuation.end());

@@ -94,6 +94,22 @@ struct StepStatus {
   std::string message;
 
   bool ok() const { return code == Code::ok; }
+
+  /// Ok for `wheel`, the message's storage kept (so that a time loop's step allocates
+  /// nothing for it).
+  void set_ok(Side wheel) {
+    code = Code::ok, side = wheel, patch = -1, solver_status = Status::not_solved;
+    message.clear();
+  }
+  /// Patch `index` of `count` of `wheel` failed with `status` and the solver's `detail`:
+  /// the message written into the storage it has.
+  void set_patch_failed(Side wheel, int index, std::size_t count, Status status, const std::string& detail) {
+    code = Code::patch_failed, side = wheel, patch = index, solver_status = status;
+    message.clear();
+    message.append(to_string(wheel)).append(" wheel, patch ").append(std::to_string(index)).append(" of ");
+    message.append(std::to_string(count)).append(": ").append(fastnorm::to_string(status));
+    if (!detail.empty()) message.append(": ").append(detail);
+  }
 };
 
 inline const char* to_string(StepStatus::Code code) {
