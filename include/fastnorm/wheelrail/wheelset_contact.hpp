@@ -157,9 +157,9 @@ class WheelsetContact {
   /// first), as qpOASES' nWSR: each solve may take what the solves before it left, but at
   /// least one iteration, so a step spends at most the budget plus one per later patch. A
   /// solve that reaches its share ends with Status::iteration_limit, and the step status
-  /// names it; an active-set solve so cut goes on at the next step from where its loop
-  /// stopped (docs/wheel-rail.md §9). What a step spent is `iterations` of its result. 0 (the default): no
-  /// budget, each solve bounded by its solver's max_iterations alone.
+  /// names it; a solve so cut goes on at the next step from where it stopped
+  /// (docs/wheel-rail.md §9). What a step spent is `iterations` of its result. 0 (the
+  /// default): no budget, each solve bounded by its solver's max_iterations alone.
   /// @throws fastnorm::invalid_argument for a negative budget
   void set_iteration_budget(int iterations) {
     FASTNORM_CHECK(iterations >= 0,
