@@ -111,8 +111,9 @@ class NormSolver : public detail::SolverBase<NormSolver<Scalar>, NormWorkspace<S
     const Options options = workspace.start_.limited(options_);
     Solution<Scalar> solution = detail::solve_active_set(*influence_, undeformed_distance, loading, options,
                                                          set_solver, workspace.loop_, workspace.start_.contact_set());
+    // A cut solve goes on from the set its loop would have solved next (docs/wheel-rail.md §9).
     if (solution.status == Status::iteration_limit) {
-      workspace.start_.continue_loop(workspace.loop_.next_set);
+      workspace.start_.set_contact_set(workspace.loop_.next_set);
     } else {
       workspace.start_.remember_set(solution);
     }

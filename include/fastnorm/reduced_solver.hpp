@@ -115,8 +115,8 @@ class ReducedSolver : public detail::SolverBase<ReducedSolver<Basis, Scalar>, Re
                                                          workspace.start_.limited(options_.active_set), set_solver,
                                                          workspace.loop_, workspace.start_.contact_set());
     // The start is left as it was, but after a solve stopped by the iteration limit: then the
-    // set the loop would have solved next (WarmStart::continue_loop).
-    if (solution.status == Status::iteration_limit) workspace.start_.continue_loop(workspace.loop_.next_set);
+    // set the loop would have solved next (ActiveSetWorkspace::next_set).
+    if (solution.status == Status::iteration_limit) workspace.start_.set_contact_set(workspace.loop_.next_set);
     return solution;
   }
 

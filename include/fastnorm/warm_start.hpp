@@ -71,31 +71,20 @@ class WarmStart {
     has_pressure_ = false;
   }
 
-  /// The contact set of a usable solution (empty otherwise); without pressures.
+  /// The contact set of a usable solution, or of one cut short by the iteration limit (its
+  /// last iterate, from which the next solve goes on); empty otherwise; without pressures.
   void remember_set(const Solution<Scalar>& solution) {
-    contact_set_.clear();
-    has_pressure_ = false;
-    if (!solution.ok()) return;
-    for (Index k = 0; k < solution.in_contact.size(); ++k) {
-      if (solution.in_contact(k)) contact_set_.push_back(k);
-    }
-  }
-
-  /// Where an active-set loop that stopped at its iteration limit would have gone on:
-  /// `next_set` (ActiveSetWorkspace::next_set), without pressures; the next solve started
-  /// from it continues that loop (docs/wheel-rail.md §9, the iteration budget).
-  void continue_loop(const std::vector<Index>& next_set) { set_contact_set(next_set); }
-
-  /// The contact set and the pressures of a usable solution, or of one cut short by the
-  /// iteration limit (CG's last iterate, from which the next solve goes on); nothing
-  /// otherwise.
-  void remember_pressure(const Solution<Scalar>& solution) {
     contact_set_.clear();
     has_pressure_ = false;
     if (!solution.ok() && solution.status != Status::iteration_limit) return;
     for (Index k = 0; k < solution.in_contact.size(); ++k) {
       if (solution.in_contact(k)) contact_set_.push_back(k);
     }
+  }
+
+  /// The contact set and the pressures of remember_set's solutions (nothing otherwise).
+  void remember_pressure(const Solution<Scalar>& solution) {
+    remember_set(solution);
     has_pressure_ = !contact_set_.empty();
     if (has_pressure_) pressure_ = solution.pressure;
   }

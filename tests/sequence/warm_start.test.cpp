@@ -152,7 +152,7 @@ TEST_CASE("A workspace's iteration limit bounds the next solves below the option
 
 TEST_CASE("A solve stopped by its iteration limit is continued by the next", "[sequence][warm]") {
   // After a solve that reached the workspace's limit, NORM and the reduced solvers leave in
-  // the start the set their active-set loop would have solved next (WarmStart::continue_loop):
+  // the start the set their active-set loop would have solved next (ActiveSetWorkspace::next_set):
   // solves of one iteration each, one after the other, take the loop's own steps and end on
   // its answer, in as many iterations in all.
   for (const auto& loading : {fastnorm::Loading<>::approach(), fastnorm::Loading<>::force(5e4)}) {

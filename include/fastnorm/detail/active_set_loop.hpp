@@ -10,7 +10,6 @@
 #include <iterator>
 #include <limits>
 #include <optional>
-#include <string>
 #include <utility>
 #include <vector>
 
@@ -167,11 +166,11 @@ class ActiveSetLoop {
         return finish(Status::converged, "contact set stable");
       }
       if (solution_.iterations == options_.max_iterations) {  // report this iterate
-        std::merge(work_.active.begin(), work_.active.end(), work_.joining.begin(), work_.joining.end(),
-                   std::back_inserter(work_.next_set));
+        merge_joining(work_.next_set);
         break;
       }
-      join();
+      merge_joining(work_.kept);
+      work_.active.swap(work_.kept);
     }
     // The last iterate, its negative pressures clipped, so the caller can inspect it.
     store(work_.active, work_.columns.view().data(), approach_);
@@ -366,15 +365,13 @@ class ActiveSetLoop {
     }
   }
 
-  /// The set and the joining elements (both sorted) merged through `kept`, whose storage is
-  /// free until the next drop: std::inplace_merge would take a temporary buffer from the heap
-  /// at every join.
-  void join() {
-    auto& merged = work_.kept;
+  /// The set and the joining elements (both sorted) merged into `merged`: `kept`, whose
+  /// storage is free until the next drop, for a join (std::inplace_merge would take a
+  /// temporary buffer from the heap at every join), or `next_set` for a cut solve.
+  void merge_joining(std::vector<Index>& merged) {
     merged.clear();
     std::merge(work_.active.begin(), work_.active.end(), work_.joining.begin(), work_.joining.end(),
                std::back_inserter(merged));
-    work_.active.swap(merged);
   }
 
   /// The pressures `pressure` on `set` (negative ones clipped) as the answer, into the

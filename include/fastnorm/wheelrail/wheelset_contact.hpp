@@ -398,12 +398,12 @@ class WheelsetContact {
     state.workspace.recycle(std::move(out.solution));  // the last call's answer: its storage
     out.solution = solver.solve(patch.undeformed_distance, Loading<double>::approach(), state.workspace);
     const auto& solution = out.solution;
-    // The next step starts from this one's contact set; from where the active-set loop would
-    // have gone on when its iteration budget stopped it (WarmStart::continue_loop), so that a
-    // budgeted patch keeps its joins and converges over the next steps (§9 of
-    // docs/wheel-rail.md; CG's start is its cut answer's set and pressures).
-    const auto& continuation = state.workspace.start().contact_set();
-    if (solution.status == Status::iteration_limit && !continuation.empty()) {
+    // The next step starts from this one's contact set; after a solve its iteration budget
+    // cut, from the start the solver left, where its iteration would have gone on (the
+    // active-set loop's next set; CG's cut answer), so that a budgeted patch keeps its joins
+    // and converges over the next steps (docs/wheel-rail.md §9).
+    if (solution.status == Status::iteration_limit) {
+      const auto& continuation = state.workspace.start().contact_set();
       state.contact_set.assign(continuation.begin(), continuation.end());
     } else {
       state.contact_set.clear();
