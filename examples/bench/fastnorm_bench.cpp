@@ -267,7 +267,7 @@ fastnorm_example::CommandLine command_line(Arguments& a) {
   line.flag("--tangential", a.tangential, "time the steady-rolling solver on CONTACT's Hertz examples (or on the CASEs) instead");
   line.flag("--creep-accuracy", a.creep_accuracy, "FASTSIM and strip theory against the exact path on the CASEs at four adhesion levels instead");
   line.flag("--table", a.table, "time ContactTable lookups (multilinear, PCHIP) on an 85 x 21 x 5 table instead");
-  line.option("--trajectory-solvers", a.trajectory_solvers, "NAME,...", "--trajectory: the solvers, NORM first anyway; NAME+warm, NAME+cold: a reduced solver started warm or cold whatever its default (both: compared step by step); NAME+capN: every patch solve stopped after N iterations, continued at the next step; NAME+fastsim: creep forces by FASTSIM instead of strip theory");
+  line.option("--trajectory-solvers", a.trajectory_solvers, "NAME,...", "--trajectory: the solvers, NORM first anyway; NAME+warm, NAME+cold: a reduced solver started warm or cold whatever its default (both: compared step by step); NAME+capN: every warm patch solve stopped after N iterations (status budget reached), continued at the next step; NAME+fastsim: creep forces by FASTSIM instead of strip theory");
   return line;
 }
 

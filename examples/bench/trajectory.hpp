@@ -111,16 +111,17 @@ struct TrajectoryRun {
   double allocations_per_step = -1;
   long allocating_steps = -1;  // steps after the first ten with any allocation inside evaluate
   double iterations_per_patch = 0;  // mean active-set or CG iterations of a patch solve
-  long limited_solves = 0;          // patch solves that ended at their iteration limit
+  long limited_solves = 0;          // patch solves stopped by their iteration limit or cap
 };
 
 /// A bench name: a solver spec, a start forced by "+warm" or "+cold" (else the default), an
-/// iteration cap per patch solve by "+cap<N>", and "+fastsim" for creep forces by FASTSIM
+/// iteration cap per warm patch solve by "+cap<N>" (WheelsetContactOptions::
+/// warm_solve_iterations), and "+fastsim" for creep forces by FASTSIM
 /// instead of strip theory (the default), in that order.
 struct TrajectorySolver {
   fastnorm::SolverSpec<double> spec;
   std::optional<bool> warm;
-  int cap = 0;  // iterations per patch solve; 0: the solver's own limit
+  int cap = 0;  // iterations per warm patch solve; 0: none
   wr::CreepMethod creep = wr::CreepMethod::strip_theory;
 
   static TrajectorySolver parse(std::string name) {
@@ -154,7 +155,7 @@ struct TrajectorySolver {
     options.creep.friction = 0.3;
     options.creep.method = creep;
     options.reduced_warm_start = warm;
-    if (cap > 0) options.solver.set_max_iterations(cap);
+    options.warm_solve_iterations = cap;
     if (warm) options.warm_start = *warm;  // NORM and CG
     return options;
   }
@@ -189,7 +190,7 @@ inline TrajectoryRun run_trajectory(const wr::Track& track, const wr::Wheelset& 
       force[w] = wheel.normal_force;
       for (const auto& patch : wheel.patches) {
         iterations += patch.solution.iterations, ++solves;
-        run.limited_solves += patch.solution.status == fastnorm::Status::iteration_limit ? 1 : 0;
+        run.limited_solves += patch.solution.stopped_early() ? 1 : 0;
       }
     }
     run.wheel_force.push_back(force);

@@ -169,7 +169,8 @@ static_assert(static_cast<int>(fastnorm::Status::not_solved) == FASTNORM_NOT_SOL
               static_cast<int>(fastnorm::Status::no_contact) == FASTNORM_NO_CONTACT &&
               static_cast<int>(fastnorm::Status::iteration_limit) == FASTNORM_ITERATION_LIMIT &&
               static_cast<int>(fastnorm::Status::cycled) == FASTNORM_CYCLED &&
-              static_cast<int>(fastnorm::Status::numerical_issue) == FASTNORM_NUMERICAL_ISSUE);
+              static_cast<int>(fastnorm::Status::numerical_issue) == FASTNORM_NUMERICAL_ISSUE &&
+              static_cast<int>(fastnorm::Status::budget_reached) == FASTNORM_BUDGET_REACHED);
 static_assert(static_cast<int>(wr::EquilibriumStatus::not_solved) == FASTNORM_EQUILIBRIUM_NOT_SOLVED &&
               static_cast<int>(wr::EquilibriumStatus::converged) == FASTNORM_EQUILIBRIUM_CONVERGED &&
               static_cast<int>(wr::EquilibriumStatus::lost_contact) == FASTNORM_EQUILIBRIUM_LOST_CONTACT &&
@@ -441,6 +442,10 @@ int fastnorm_wheelset_create(const fastnorm_wheelset_options* options, fastnorm_
     apply_max_iterations(options->max_iterations, contact.solver);
     contact.distance.tolerance = options->distance_tolerance;
     contact.distance_everywhere = options->distance_everywhere != 0;
+    FASTNORM_CHECK(options->warm_solve_iterations >= 0,
+                   fastnorm::describe("options.warm_solve_iterations must be >= 0 (0: none)",
+                                      options->warm_solve_iterations));
+    contact.warm_solve_iterations = options->warm_solve_iterations;
     FASTNORM_CHECK(options->friction >= 0, fastnorm::describe("options.friction must be >= 0 (0: none)", options->friction));
     if (options->friction > 0) contact.creep.friction = options->friction;
     FASTNORM_CHECK(options->creep_method == FASTNORM_STRIP_THEORY || options->creep_method == FASTNORM_FASTSIM,

@@ -13,7 +13,8 @@ module fastnorm_c
                                fastnorm_error_internal = 3, fastnorm_error_patch_failed = 4
   ! How a solve ended.
   integer(c_int), parameter :: fastnorm_not_solved = 0, fastnorm_converged = 1, fastnorm_no_contact = 2, &
-                               fastnorm_iteration_limit = 3, fastnorm_cycled = 4, fastnorm_numerical_issue = 5
+                               fastnorm_iteration_limit = 3, fastnorm_cycled = 4, fastnorm_numerical_issue = 5, &
+                               fastnorm_budget_reached = 6
   ! A patch's history against the previous evaluate.
   integer(c_int), parameter :: fastnorm_patch_continued = 0, fastnorm_patch_appeared = 1, &
                                fastnorm_patch_merged = 2, fastnorm_patch_split = 3
@@ -74,6 +75,7 @@ module fastnorm_c
     real(c_double) :: friction  ! mu of the creep forces of fastnorm_wheelset_evaluate_moving; 0: none
     integer(c_int) :: creep_method  ! FASTNORM_STRIP_THEORY (default) or FASTNORM_FASTSIM
     integer(c_int) :: distance_everywhere  ! 1: h on every element; 0 (default): where it can touch
+    integer(c_int) :: warm_solve_iterations  ! cap of each warm patch solve; 0 (default): none
   end type
 
   type, bind(c) :: fastnorm_pose

@@ -40,7 +40,10 @@ enum {
   FASTNORM_NO_CONTACT = 2,
   FASTNORM_ITERATION_LIMIT = 3,
   FASTNORM_CYCLED = 4, /* reduced bases: the last set with positive pressures, usable */
-  FASTNORM_NUMERICAL_ISSUE = 5
+  FASTNORM_NUMERICAL_ISSUE = 5,
+  /* a caller's iteration budget stopped the solve at its last iterate with every pressure
+   * positive: usable; the next evaluate goes on where it stopped (docs/wheel-rail.md §9) */
+  FASTNORM_BUDGET_REACHED = 6
 };
 
 /* The fast tangential methods of the wheelset model (docs/tangential.md §9-10). */
@@ -192,6 +195,9 @@ typedef struct fastnorm_wheelset_options {
   int distance_everywhere;    /* 1: h on every element of a patch's grid; 0 (default): only where an
                                  element can interpenetrate, 1e-3 m elsewhere (docs/wheel-rail.md §4,
                                  item 8) */
+  int warm_solve_iterations;  /* the most iterations of each warm-started patch solve in an evaluate
+                                 (FASTNORM_BUDGET_REACHED at the cap, continued at the next); cold
+                                 solves uncapped; 0 (default): none (docs/wheel-rail.md §9) */
 } fastnorm_wheelset_options;
 
 /* Fills the defaults: "norm", S1002 on UIC60, radius 0.45 m, gauge 1.435 m, cant 1/40,
@@ -283,8 +289,10 @@ FASTNORM_C_API int fastnorm_wheelset_evaluate_moving(fastnorm_wheelset* model, c
                                                      const fastnorm_velocity* velocity, double* force, double* moment);
 FASTNORM_C_API int fastnorm_wheelset_step_status(const fastnorm_wheelset* model, fastnorm_step_status* status);
 /* The most solver iterations an evaluate may spend over its patch solves, in order, each at
- * least one (docs/wheel-rail.md §9): a solve cut short ends at FASTNORM_ITERATION_LIMIT and
- * the evaluate returns FASTNORM_ERROR_PATCH_FAILED naming it; 0 (the default): none. */
+ * least one (docs/wheel-rail.md §9): a solve cut short ends at FASTNORM_BUDGET_REACHED with
+ * its last iterate whose pressures are all positive (usable), or, if it had none, at
+ * FASTNORM_ITERATION_LIMIT, and the evaluate returns FASTNORM_ERROR_PATCH_FAILED naming it;
+ * either goes on at the next evaluate; 0 (the default): none. */
 FASTNORM_C_API int fastnorm_wheelset_set_iteration_budget(fastnorm_wheelset* model, int iterations);
 /* The solver iterations the last evaluate spent over its patch solves (0 before any). */
 FASTNORM_C_API int fastnorm_wheelset_iterations(const fastnorm_wheelset* model, int* iterations);

@@ -466,7 +466,7 @@ std::unique_ptr<PyWheelset> make_wheelset(const std::string& solver, Eigen::Inde
                                           double gauge, double cant, const Material& material, bool stiffness,
                                           std::optional<int> max_iterations, double distance_tolerance,
                                           bool distance_everywhere, std::optional<double> friction,
-                                          const std::string& creep_method) {
+                                          const std::string& creep_method, int warm_solve_iterations) {
   wr::WheelsetOnTrack setup;
   setup.wheel_profile = wheel_profile.value_or("");
   setup.rail_profile = rail_profile.value_or("");
@@ -480,6 +480,7 @@ std::unique_ptr<PyWheelset> make_wheelset(const std::string& solver, Eigen::Inde
   options.stiffness = stiffness;
   options.distance.tolerance = distance_tolerance;
   options.distance_everywhere = distance_everywhere;
+  options.warm_solve_iterations = warm_solve_iterations;
   options.creep.friction = friction;
   if (creep_method == "fastsim") {
     options.creep.method = wr::CreepMethod::fastsim;
@@ -533,9 +534,10 @@ void bind_basics(py::module_& m) {
       });
 
   py::class_<PySolution>(m, "Solution", "A solver's answer.")
-      .def_readonly("status", &PySolution::status, "'converged', 'no contact', 'iteration limit', 'cycled', ...")
+      .def_readonly("status", &PySolution::status,
+                    "'converged', 'no contact', 'iteration limit', 'cycled', 'budget reached', ...")
       .def_readonly("message", &PySolution::message, "why, when not converged")
-      .def_readonly("ok", &PySolution::ok, "a usable answer ('converged', 'no contact' or 'cycled')")
+      .def_readonly("ok", &PySolution::ok, "a usable answer ('converged', 'no contact', 'cycled' or 'budget reached')")
       .def_readonly("pressure_pa", &PySolution::pressure, "pressures (Pa), shape (my, mx)")
       .def_readonly("in_contact", &PySolution::in_contact, "the contact set, bool, shape (my, mx)")
       .def_readonly("normal_force_n", &PySolution::normal_force, "Fn (N)")
@@ -853,14 +855,17 @@ void bind_wheelset(py::module_& m) {
                          "(0: exact at every element); distance_everywhere: h on every element of a patch's grid "
                          "(default: only where an element can interpenetrate, 1e-3 m elsewhere). friction: "
                          "Coulomb's mu of every patch, for creep forces when evaluate is given a Velocity; "
-                         "creep_method: 'strip_theory' (default) or 'fastsim'. "
+                         "creep_method: 'strip_theory' (default) or 'fastsim'. warm_solve_iterations: the most "
+                         "iterations of each warm-started patch solve in an evaluate (status 'budget reached' at the "
+                         "cap, continued at the next evaluate; cold solves uncapped; 0: none). "
                          "Calls on one model run one at a time.")
       .def(py::init(&make_wheelset), py::kw_only(), "solver"_a = "norm", "elements"_a = 60,
            "wheel_profile"_a = py::none(), "rail_profile"_a = py::none(),
            "nominal_radius_m"_a = wr::WheelsetLayout().nominal_radius, "gauge_m"_a = wr::TrackLayout().gauge,
            "cant_rad"_a = wr::TrackLayout().cant, "material"_a = Material::steel(), "stiffness"_a = true,
            "max_iterations"_a = py::none(), "distance_tolerance_m"_a = wr::DistanceAccuracy().tolerance,
-           "distance_everywhere"_a = false, "friction"_a = py::none(), "creep_method"_a = "strip_theory")
+           "distance_everywhere"_a = false, "friction"_a = py::none(), "creep_method"_a = "strip_theory",
+           "warm_solve_iterations"_a = 0)
       .def(
           "evaluate",
           [](PyWheelset& model, double y, double z, double roll, double yaw,

@@ -114,7 +114,8 @@ class CgSolver : public detail::SolverBase<CgSolver<Scalar>, CgWorkspace<Scalar>
       solution.message = "no element has a negative undeformed distance";
     } else {
       const Options options = workspace.start_.limited(options_);
-      Iteration iteration{*influence_, options, undeformed_distance, loading, workspace};
+      Iteration iteration{*influence_, options, undeformed_distance, loading, workspace,
+                          workspace.start_.stop(options_.max_iterations).budget};
       iteration.start();
       iteration.run(solution);
     }
@@ -187,6 +188,7 @@ class CgSolver : public detail::SolverBase<CgSolver<Scalar>, CgWorkspace<Scalar>
     const Eigen::Ref<const Vector>& h;
     const Loading<Scalar>& loading;
     Workspace& work;
+    bool budgeted;  // options.max_iterations is a caller's budget or cap (WarmStart::stop)
     Vector& p = work.pressure_;
     Vector& u = work.displacement_;  // C p, kept up to date
     Vector& gap = work.gap_;
@@ -280,6 +282,13 @@ class CgSolver : public detail::SolverBase<CgSolver<Scalar>, CgWorkspace<Scalar>
           solution.status = Status::numerical_issue;
           solution.message = "the complementarity error or the depth is not finite after " +
                              std::to_string(iteration) + " iterations (modulus or force too large for the precision?)";
+          break;
+        }
+        if (iteration == options.max_iterations && budgeted) {
+          // Every iterate is projected (p ≥ 0) and in force control scaled to the load, so
+          // the answer is usable; a literal, since a budgeted time step allocates nothing.
+          solution.status = Status::budget_reached;
+          solution.message = "stopped by the iteration budget; the next solve goes on from here";
           break;
         }
         if (iteration == options.max_iterations) {

@@ -108,11 +108,10 @@ class NormSolver : public detail::SolverBase<NormSolver<Scalar>, NormWorkspace<S
       workspace.loop_.start_on_grid(static_cast<std::size_t>(grid().size()));
     }
     DenseSetSolver set_solver{*influence_, workspace.factorisation_};
-    const Options options = workspace.start_.limited(options_);
-    Solution<Scalar> solution = detail::solve_active_set(*influence_, undeformed_distance, loading, options,
-                                                         set_solver, workspace.loop_, workspace.start_.contact_set());
+    Solution<Scalar> solution = detail::solve_active_set(*influence_, undeformed_distance, loading, options_,
+                                                         set_solver, workspace.loop_, workspace.start_);
     // A cut solve goes on from the set its loop would have solved next (docs/wheel-rail.md §9).
-    if (solution.status == Status::iteration_limit) {
+    if (solution.stopped_early()) {
       workspace.start_.set_contact_set(workspace.loop_.next_set);
     } else {
       workspace.start_.remember_set(solution);

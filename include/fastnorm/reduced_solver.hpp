@@ -112,11 +112,11 @@ class ReducedSolver : public detail::SolverBase<ReducedSolver<Basis, Scalar>, Re
     workspace.memory_.next_problem();
     detail::GalerkinSetSolver<Basis, Scalar> set_solver(*influence_, basis_, *tables_, workspace.memory_);
     Solution<Scalar> solution = detail::solve_active_set(*influence_, undeformed_distance, loading,
-                                                         workspace.start_.limited(options_.active_set), set_solver,
-                                                         workspace.loop_, workspace.start_.contact_set());
+                                                         options_.active_set, set_solver, workspace.loop_,
+                                                         workspace.start_);
     // The start is left as it was, but after a solve stopped by the iteration limit: then the
     // set the loop would have solved next (ActiveSetWorkspace::next_set).
-    if (solution.status == Status::iteration_limit) workspace.start_.set_contact_set(workspace.loop_.next_set);
+    if (solution.stopped_early()) workspace.start_.set_contact_set(workspace.loop_.next_set);
     return solution;
   }
 

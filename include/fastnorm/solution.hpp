@@ -43,6 +43,10 @@ enum class Status {
   cycled,           ///< reduced bases only: no set satisfies both conditions in the basis; the
                     ///< last set whose pressures are all positive is returned (usable)
   numerical_issue,  ///< a factorisation failed (matrix not positive definite)
+  budget_reached,   ///< a caller's iteration budget (WarmStart::limit_iterations) stopped the
+                    ///< active-set loop; the answer is its last iterate whose pressures were
+                    ///< all positive (usable, with that iterate's residual), and the next solve
+                    ///< from the same workspace goes on where the loop stopped
 };
 
 inline const char* to_string(Status status) {
@@ -53,6 +57,7 @@ inline const char* to_string(Status status) {
     case Status::iteration_limit: return "iteration limit";
     case Status::cycled: return "cycled";
     case Status::numerical_issue: return "numerical issue";
+    case Status::budget_reached: return "budget reached";
   }
   return "unknown";
 }
@@ -101,10 +106,16 @@ struct Solution {
     message.clear();
     at_edge = false;
   }
-  /// The pressures are a usable answer: converged, no contact, or a resolved cycle.
+  /// The pressures are a usable answer: converged, no contact, a resolved cycle, or the
+  /// admissible iterate at which a caller's budget stopped the loop.
   bool ok() const {
-    return status == Status::converged || status == Status::no_contact || status == Status::cycled;
+    return status == Status::converged || status == Status::no_contact || status == Status::cycled ||
+           status == Status::budget_reached;
   }
+  /// The solve was stopped by an iteration limit and the next solve from its workspace
+  /// continues it (iteration_limit: the solver's own max_iterations, or a budget that left
+  /// no admissible iterate; budget_reached: a caller's budget).
+  bool stopped_early() const { return status == Status::iteration_limit || status == Status::budget_reached; }
 };
 
 namespace detail {

@@ -22,9 +22,10 @@ struct ActiveSetOptions {
   /// tolerance (relative). Unset: the solver's own, join_tolerance().
   std::optional<Scalar> gap_tolerance;
   /// The starting set is {h − δ₀ ≤ start_depth_fraction · min(h − δ₀)}, δ₀ = 0 in approach
-  /// control and a Hertz-like guess in force control. 1 is Kalker's original start, all
-  /// interpenetrating elements; the default 0.5 is the Hertz contact area, which needs
-  /// fewer and smaller factorisations (docs/norm.md §2). NORM's answer does not depend on it.
+  /// control and a Hertz-like guess in force control. 1 starts from the deepest element
+  /// alone; Kalker's original start, every interpenetrating element, is the limit towards
+  /// 0; the default 0.5 is the Hertz contact area, which needs fewer and smaller
+  /// factorisations than either (docs/norm.md §2). NORM's answer does not depend on it.
   Scalar start_depth_fraction = Scalar(0.5);
   /// The join check skips a candidate whose gap a bound keeps above zero (docs/method.md
   /// §3, "Pruning the join check"). The answer is the same bit for bit either way; false

@@ -12,6 +12,14 @@
 
 namespace fastnorm {
 
+/// Where an iterative solve stops short of convergence, from its options' max_iterations
+/// and its workspace's limits (WarmStart::stop).
+struct IterationStop {
+  int hard = 0;         ///< no solve takes more iterations
+  int soft = 0;         ///< ≤ hard: an active-set solve stops here at an admissible iterate
+  bool budget = false;  ///< a stop at an admissible iterate is a caller's (Status::budget_reached)
+};
+
 /// The starting state a workspace hands to its next solve: a contact set and, where the
 /// solver that last used it works with them (CG), the pressures it ended with.
 ///
@@ -46,19 +54,44 @@ class WarmStart {
   const Vector& pressure() const { return pressure_; }
 
   /// The most iterations each next solve may take, below its options' max_iterations: a
-  /// caller's budget (a time step's, WheelsetContact::set_iteration_budget); a solve that
-  /// reaches it ends with Status::iteration_limit. 0: the options' alone. clear() keeps it.
+  /// caller's budget (a time step's, WheelsetContact::set_iteration_budget). A solve that
+  /// reaches it ends with Status::budget_reached at its last admissible iterate (every
+  /// pressure positive; for CG its projected iterate), or with Status::iteration_limit where
+  /// there is none, and the next solve goes on where it stopped. 0: the options' alone.
+  /// clear() keeps it.
   int iteration_limit() const { return iteration_limit_; }
   /// @throws fastnorm::invalid_argument for a negative limit
   void limit_iterations(int limit) {
     FASTNORM_CHECK(limit >= 0, detail::describe("warm start: iteration limit must be >= 0", limit));
     iteration_limit_ = limit;
   }
-  /// `options` with max_iterations lowered to the limit (any options type with one).
+  /// `options` with max_iterations lowered to the limit and the cap (any options type with
+  /// one): a solve whose every iterate is admissible (CG) stops at either.
   template <typename Options>
   Options limited(Options options) const {
-    if (iteration_limit_ > 0) options.max_iterations = std::min(options.max_iterations, iteration_limit_);
+    options.max_iterations = stop(options.max_iterations).soft;
     return options;
+  }
+  /// A softer bound below the limit (a time loop's cap per solve,
+  /// WheelsetContactOptions::warm_solve_iterations): an active-set solve stops after `cap`
+  /// iterations at its last admissible iterate, Status::budget_reached, as at the limit;
+  /// but a stop that would come after a drop before any admissible iterate waits for the
+  /// next one (within the limit and max_iterations), so that the answer is usable. CG,
+  /// whose every iterate is admissible, stops at the cap. 0: none. clear() keeps it.
+  int iteration_cap() const { return iteration_cap_; }
+  /// @throws fastnorm::invalid_argument for a negative cap
+  void cap_iterations(int cap) {
+    FASTNORM_CHECK(cap >= 0, detail::describe("warm start: iteration cap must be >= 0", cap));
+    iteration_cap_ = cap;
+  }
+  /// The stop of the next solve of options with `max_iterations` (iteration_limit, iteration_cap).
+  IterationStop stop(int max_iterations) const {
+    IterationStop stop;
+    const bool limit_binds = iteration_limit_ > 0 && iteration_limit_ <= max_iterations;
+    stop.hard = limit_binds ? iteration_limit_ : max_iterations;
+    stop.soft = iteration_cap_ > 0 ? std::min(iteration_cap_, stop.hard) : stop.hard;
+    stop.budget = limit_binds || (iteration_cap_ > 0 && iteration_cap_ <= max_iterations);
+    return stop;
   }
 
   /// Storage for a contact set of up to `elements` elements (a grid's size), so that
@@ -76,7 +109,7 @@ class WarmStart {
   void remember_set(const Solution<Scalar>& solution) {
     contact_set_.clear();
     has_pressure_ = false;
-    if (!solution.ok() && solution.status != Status::iteration_limit) return;
+    if (!solution.ok() && !solution.stopped_early()) return;
     for (Index k = 0; k < solution.in_contact.size(); ++k) {
       if (solution.in_contact(k)) contact_set_.push_back(k);
     }
@@ -112,6 +145,7 @@ class WarmStart {
   Vector pressure_;
   bool has_pressure_ = false;
   int iteration_limit_ = 0;
+  int iteration_cap_ = 0;
 };
 
 }  // namespace fastnorm

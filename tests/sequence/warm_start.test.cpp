@@ -125,7 +125,9 @@ TEST_CASE("A cold solve does not depend on what the solver solved before", "[seq
 
 TEST_CASE("A workspace's iteration limit bounds the next solves below the options' own", "[sequence][warm]") {
   // WarmStart::limit_iterations (what WheelsetContact::set_iteration_budget sets per patch):
-  // a solve that needs more ends at the limit with Status::iteration_limit; 0 lifts it.
+  // a solve that needs more stops at the limit, a caller's budget, with a usable iterate
+  // (Status::budget_reached: CG's projected iterate; the active-set loop's first set here,
+  // whose pressures are all positive); 0 lifts it.
   const auto sequence = moving_indenter(24, 1, 2e-5);
   const auto& h = sequence.h.front();
   for (const char* name : {"norm", "cg", "elliptic"}) {
@@ -138,8 +140,12 @@ TEST_CASE("A workspace's iteration limit bounds the next solves below the option
     workspace.forget();
     workspace.start().limit_iterations(1);
     const auto limited = solver.solve(h, fastnorm::Loading<>::approach(), workspace);
-    CHECK(limited.status == fastnorm::Status::iteration_limit);
+    CHECK(limited.status == fastnorm::Status::budget_reached);
+    CHECK(limited.ok());
+    CHECK(limited.stopped_early());
     CHECK(limited.iterations == 1);
+    CHECK(limited.residual > 0);  // elements outside still interpenetrate
+    CHECK(limited.normal_force > 0);
     CHECK(workspace.start().iteration_limit() == 1);  // kept for the solves after
     workspace.forget();
     workspace.start().limit_iterations(0);
@@ -148,6 +154,85 @@ TEST_CASE("A workspace's iteration limit bounds the next solves below the option
   }
   fastnorm::WarmStart<> start;
   CHECK_THROWS_WITH(start.limit_iterations(-2), Catch::Matchers::Contains("iteration limit must be >= 0"));
+}
+
+TEST_CASE("A budget's stop answers with the loop's last admissible iterate; the options' own limit does not",
+          "[sequence][warm]") {
+  // Status::budget_reached: the answer is the last set of the loop whose pressures were all
+  // positive, with its join check's residual: NORM solves each set exactly, so the gap
+  // h + C p vanishes on the answer's set and its deepest value outside, relative to the
+  // depth, is the residual (recomputed here with the influence table's full product).
+  // The solver's own max_iterations is a failure: the clipped last iterate, iteration_limit.
+  const auto sequence = moving_indenter(24, 1, 2e-5);
+  const auto& h = sequence.h.front();
+  fastnorm::ActiveSetOptions<> small_start;  // the deepest elements alone: several joins
+  small_start.start_depth_fraction = 0.9;
+  const fastnorm::NormSolver<> solver(sequence.grid, steel, small_start);
+  fastnorm::NormSolver<>::Workspace workspace;
+  const auto free_solve = solver.solve(h, fastnorm::Loading<>::approach(), workspace);
+  REQUIRE(free_solve.iterations >= 3);
+  int budget_stops = 0;
+  for (int limit = 1; limit < free_solve.iterations; ++limit) {
+    INFO("limit " << limit << " of " << free_solve.iterations);
+    workspace.forget();
+    workspace.start().limit_iterations(limit);
+    const auto stopped = solver.solve(h, fastnorm::Loading<>::approach(), workspace);
+    REQUIRE(stopped.stopped_early());
+    CHECK(stopped.iterations == limit);
+    if (stopped.status != fastnorm::Status::budget_reached) continue;  // no admissible iterate yet
+    ++budget_stops;
+    const Eigen::VectorXd gap = h + solver.influence().displacement(stopped.pressure);
+    const double depth = -h.minCoeff();
+    double deepest_outside = 0, largest_on_set = 0;
+    for (Eigen::Index k = 0; k < h.size(); ++k) {
+      if (stopped.in_contact(k)) {
+        CHECK(stopped.pressure(k) > 0);
+        largest_on_set = std::max(largest_on_set, std::abs(gap(k)));
+      } else {
+        deepest_outside = std::min(deepest_outside, gap(k));
+      }
+    }
+    CHECK(largest_on_set <= 1e-12 * depth);
+    CHECK(stopped.residual == Approx(-deepest_outside / depth).epsilon(1e-9));
+    CHECK(stopped.residual > 0);
+  }
+  CHECK(budget_stops > 0);
+  fastnorm::ActiveSetOptions<> one_iteration;
+  one_iteration.max_iterations = 1;
+  const fastnorm::NormSolver<> impatient(sequence.grid, steel, one_iteration);
+  const auto given_up = impatient.solve(h, fastnorm::Loading<>::approach());
+  CHECK(given_up.status == fastnorm::Status::iteration_limit);
+  CHECK_FALSE(given_up.ok());
+}
+
+TEST_CASE("An iteration cap waits for an admissible iterate; the limit does not", "[sequence][warm]") {
+  // Started from nearly every interpenetrating element, NORM drops elements in its first
+  // iterations. Limited to one, it stops there without an iterate whose pressures are all
+  // positive (iteration_limit, not usable); capped at one, it goes on to the first such
+  // iterate and answers usably; a limit below the cap's wait still bounds it.
+  const auto sequence = moving_indenter(24, 1, 2e-5);
+  const auto& h = sequence.h.front();
+  fastnorm::ActiveSetOptions<> large_start;
+  large_start.start_depth_fraction = 0.05;
+  const fastnorm::NormSolver<> solver(sequence.grid, steel, large_start);
+  fastnorm::NormSolver<>::Workspace workspace;
+  workspace.start().limit_iterations(1);
+  const auto limited = solver.solve(h, fastnorm::Loading<>::approach(), workspace);
+  REQUIRE(limited.status == fastnorm::Status::iteration_limit);  // a drop first
+  CHECK(limited.iterations == 1);
+  workspace.forget();  // keeps the limit: lifted here
+  workspace.start().limit_iterations(0);
+  workspace.start().cap_iterations(1);
+  CHECK(workspace.start().iteration_cap() == 1);
+  const auto capped = solver.solve(h, fastnorm::Loading<>::approach(), workspace);
+  CHECK(capped.ok());
+  CHECK(capped.iterations > 1);
+  CHECK((capped.pressure.array() >= 0).all());
+  workspace.forget();
+  workspace.start().cap_iterations(1);
+  workspace.start().limit_iterations(1);
+  CHECK(solver.solve(h, fastnorm::Loading<>::approach(), workspace).status == fastnorm::Status::iteration_limit);
+  CHECK_THROWS_WITH(workspace.start().cap_iterations(-1), Catch::Matchers::Contains("iteration cap must be >= 0"));
 }
 
 TEST_CASE("A solve stopped by its iteration limit is continued by the next", "[sequence][warm]") {
@@ -172,8 +257,8 @@ TEST_CASE("A solve stopped by its iteration limit is continued by the next", "[s
       do {
         continued = solver.solve(h, loading, workspace);
         spent += continued.iterations;
-        if (continued.status == fastnorm::Status::iteration_limit) CHECK_FALSE(workspace.start().contact_set().empty());
-      } while (continued.status == fastnorm::Status::iteration_limit && spent < 2 * free_solve.iterations);
+        if (continued.stopped_early()) CHECK_FALSE(workspace.start().contact_set().empty());
+      } while (continued.stopped_early() && spent < 2 * free_solve.iterations);
       REQUIRE(continued.status == fastnorm::Status::converged);
       CHECK(spent == free_solve.iterations);
       CHECK((continued.in_contact == free_solve.in_contact).all());
@@ -200,8 +285,8 @@ TEST_CASE("A CG solve stopped by its iteration limit is continued by the next", 
   int solves = 0;
   do {
     continued = solver.solve(h, fastnorm::Loading<>::approach(), workspace);
-    if (continued.status == fastnorm::Status::iteration_limit) CHECK(workspace.start().has_pressure());
-  } while (continued.status == fastnorm::Status::iteration_limit && ++solves < 10 * free_solve.iterations);
+    if (continued.stopped_early()) CHECK(workspace.start().has_pressure());
+  } while (continued.stopped_early() && ++solves < 10 * free_solve.iterations);
   REQUIRE(continued.status == fastnorm::Status::converged);
   INFO("solves of at most 2 iterations: " << solves + 1 << "; the free solve's iterations: " << free_solve.iterations);
   CHECK((continued.pressure - free_solve.pressure).cwiseAbs().maxCoeff() <= 1e-6 * free_solve.pressure.maxCoeff());

@@ -177,6 +177,18 @@ TEST_CASE("The equilibrium of a given model is that model's own", "[wheelrail][m
   options.stiffness = false;
   wr::WheelsetContact<fastnorm::NormSolver<>> stiff_less(wr::Track(), wr::Wheelset(), options);
   CHECK_THROWS_WITH(wr::solve_equilibrium(stiff_less, 3e-3, 0, load), Contains("stiffness must be on"));
+  // Nor can one whose solves stop short: a capped or budgeted force depends on the steps before.
+  auto capped_options = coarse("norm");
+  capped_options.warm_solve_iterations = 2;
+  wr::WheelsetContact<fastnorm::NormSolver<>> capped(wr::Track(), wr::Wheelset(), capped_options);
+  CHECK_THROWS_WITH(wr::solve_equilibrium(capped, 3e-3, 0, load), Contains("warm_solve_iterations must be 0"));
+  wr::WheelsetContact<fastnorm::NormSolver<>> budgeted(wr::Track(), wr::Wheelset(), coarse("norm"));
+  budgeted.set_iteration_budget(5);
+  CHECK_THROWS_WITH(wr::solve_equilibrium(budgeted, 3e-3, 0, load), Contains("iteration budget must be 0"));
+  wr::EquilibriumOptions capped_search;
+  capped_search.contact.warm_solve_iterations = 2;
+  CHECK_THROWS_WITH(wr::solve_equilibrium(wr::Track(), wr::Wheelset(), 3e-3, 0, load, capped_search),
+                    Contains("contact.warm_solve_iterations must be 0"));
 }
 
 TEST_CASE("The step status names the wheel and patch that failed, and why", "[wheelrail][model]") {
@@ -239,28 +251,34 @@ TEST_CASE("A step spends at most its iteration budget, and reports what it spent
     }
   }
   // Cold, an elliptic solve needs more than one set here; a budget of 1 gives every patch
-  // solve a single iteration, and the step status names the first that ended at the limit.
+  // solve a single iteration. A stop at an iterate whose pressures are all positive is the
+  // budget's (budget_reached, usable); one after a drop, before any such iterate, is a
+  // failure (iteration_limit), and the step status names the first.
   wr::WheelsetContact<> tight(wr::Track(), wr::Wheelset(), coarse("elliptic"));
   tight.set_iteration_budget(1);
   const auto& result = tight.evaluate(pose);
-  REQUIRE_FALSE(result.ok());
   int patches = 0;
-  std::optional<std::pair<wr::Side, int>> first_limited;
+  std::optional<std::pair<wr::Side, int>> first_failed;
   for (std::size_t w = 0; w < 2; ++w) {
     for (std::size_t k = 0; k < result.wheels[w].patches.size(); ++k, ++patches) {
       const auto& solution = result.wheels[w].patches[k].solution;
       CHECK(solution.iterations == 1);
-      if (!first_limited && solution.status == fastnorm::Status::iteration_limit) {
-        first_limited = std::make_pair(result.wheels[w].side, static_cast<int>(k));
+      CHECK(solution.stopped_early());
+      if (!first_failed && !solution.ok()) first_failed = std::make_pair(result.wheels[w].side, static_cast<int>(k));
+      if (solution.status == fastnorm::Status::budget_reached) {
+        CHECK(result.wheels[w].patches[k].normal_force > 0);
+        CHECK(std::isfinite(result.wheels[w].patches[k].stiffness));  // usable: stiffness as for any answer
       }
     }
   }
   CHECK(result.iterations == patches);
-  REQUIRE(first_limited.has_value());
-  CHECK(result.status.code == wr::StepStatus::Code::patch_failed);
-  CHECK(result.status.side == first_limited->first);
-  CHECK(result.status.patch == first_limited->second);
-  CHECK(result.status.solver_status == fastnorm::Status::iteration_limit);
+  CHECK(result.ok() == !first_failed.has_value());
+  if (first_failed) {
+    CHECK(result.status.code == wr::StepStatus::Code::patch_failed);
+    CHECK(result.status.side == first_failed->first);
+    CHECK(result.status.patch == first_failed->second);
+    CHECK(result.status.solver_status == fastnorm::Status::iteration_limit);
+  }
   // A budgeted patch goes on from where its loop stopped (the joins it found included),
   // so that at a pose held fixed the budgeted model reaches the free model's answer within
   // a few steps; it would repeat its one set forever if it started each step from its answer.
@@ -271,10 +289,19 @@ TEST_CASE("A step spends at most its iteration budget, and reports what it spent
   for (const auto& wheel : free_result.wheels) {
     for (const auto& patch : wheel.patches) free_iterations = std::max(free_iterations, patch.solution.iterations);
   }
-  for (int step = 1; step < 4 * free_iterations && !tight.evaluate(pose).ok(); ++step) {
+  const auto still_stopping = [](const wr::WheelsetContactResult& step) {
+    for (const auto& wheel : step.wheels) {
+      for (const auto& patch : wheel.patches) {
+        if (patch.solution.stopped_early()) return true;
+      }
+    }
+    return false;
+  };
+  for (int step = 1; step < 4 * free_iterations && still_stopping(tight.evaluate(pose)); ++step) {
   }
   const auto& settled = tight.evaluate(pose);
   REQUIRE(settled.ok());
+  REQUIRE_FALSE(still_stopping(settled));
   for (std::size_t w = 0; w < 2; ++w) {
     REQUIRE(settled.wheels[w].patches.size() == free_result.wheels[w].patches.size());
     for (std::size_t k = 0; k < settled.wheels[w].patches.size(); ++k) {
@@ -287,6 +314,57 @@ TEST_CASE("A step spends at most its iteration budget, and reports what it spent
   tight.set_iteration_budget(0);
   CHECK(tight.evaluate(pose).ok());
   CHECK_THROWS_WITH(tight.set_iteration_budget(-1), Contains("iterations must be >= 0"));
+}
+
+TEST_CASE("A per-solve cap bounds warm solves only, and a capped model follows the free one", "[wheelrail][model]") {
+  // WheelsetContactOptions::warm_solve_iterations: the first evaluate is cold and runs to
+  // convergence (the free model's answer); later, warm solves stop at the cap with a usable
+  // iterate (budget_reached; after a drop before any such iterate, at the next one), so
+  // every step is usable, and at a pose held fixed the model reaches the free model's
+  // answer there.
+  const auto pose = pressed_pose();
+  auto options = coarse("elliptic");
+  options.warm_solve_iterations = 1;
+  wr::WheelsetContact<> capped(wr::Track(), wr::Wheelset(), options);
+  wr::WheelsetContact<> free_model(wr::Track(), wr::Wheelset(), coarse("elliptic"));
+  const auto same_answers = [](const wr::WheelsetContactResult& got, const wr::WheelsetContactResult& expected) {
+    for (std::size_t w = 0; w < 2; ++w) {
+      REQUIRE(got.wheels[w].patches.size() == expected.wheels[w].patches.size());
+      for (std::size_t k = 0; k < got.wheels[w].patches.size(); ++k) {
+        const auto& a = got.wheels[w].patches[k].solution, &b = expected.wheels[w].patches[k].solution;
+        CHECK(a.status == fastnorm::Status::converged);
+        CHECK((a.in_contact == b.in_contact).all());
+        CHECK(a.normal_force == Approx(b.normal_force).epsilon(1e-12));
+      }
+    }
+  };
+  const auto& first = capped.evaluate(pose);
+  REQUIRE(first.ok());
+  same_answers(first, free_model.evaluate(pose));
+  auto moved = pose;
+  moved.y += 0.3e-3;  // a jump of several elements: the warm solves need more than one set
+  int stopped = 0;
+  for (int step = 0; step < 30; ++step) {
+    const auto& result = capped.evaluate(moved);
+    REQUIRE(result.ok());
+    bool any_stopped = false;
+    for (const auto& wheel : result.wheels) {
+      for (const auto& patch : wheel.patches) {
+        const auto status = patch.solution.status;
+        CHECK((status == fastnorm::Status::budget_reached || status == fastnorm::Status::converged));
+        CHECK(std::isfinite(patch.stiffness));
+        any_stopped = any_stopped || status == fastnorm::Status::budget_reached;
+      }
+    }
+    if (!any_stopped) break;
+    ++stopped;
+  }
+  CHECK(stopped > 0);
+  // The next step at the same pose is converged, and is the free model's answer there
+  // (one iteration: the set holds).
+  same_answers(capped.evaluate(moved), free_model.evaluate(moved));
+  options.warm_solve_iterations = -1;
+  CHECK_THROWS_WITH(wr::WheelsetContact<>(wr::Track(), wr::Wheelset(), options), Contains("warm_solve_iterations"));
 }
 
 namespace {

@@ -31,7 +31,7 @@ class Options(ctypes.Structure):
                 ("material", Material), ("elements", ctypes.c_int), ("stiffness", ctypes.c_int),
                 ("max_iterations", ctypes.c_int), ("distance_tolerance", ctypes.c_double),
                 ("friction", ctypes.c_double), ("creep_method", ctypes.c_int),
-                ("distance_everywhere", ctypes.c_int)]
+                ("distance_everywhere", ctypes.c_int), ("warm_solve_iterations", ctypes.c_int)]
 
 
 class Pose(ctypes.Structure):

@@ -207,8 +207,29 @@ def test_an_iteration_budget_bounds_a_step_and_the_step_reports_its_work():
     tight = fastnorm.WheelsetContact(solver="elliptic", elements=20)
     tight.iteration_budget = 1
     cut = tight.evaluate(pose)
-    assert not cut.ok
-    assert cut.status.solver_status == "iteration limit"
+    # Each solve stops after its one iteration: at its iterate with every pressure positive
+    # ('budget reached', usable), or, after a drop before any, at 'iteration limit' (failed).
+    statuses = [patch.solution.status for wheel in cut.wheels for patch in wheel.patches]
+    assert set(statuses) <= {"budget reached", "iteration limit"}
+    assert cut.ok == ("iteration limit" not in statuses)
+    if not cut.ok:
+        assert cut.status.solver_status == "iteration limit"
     assert cut.iterations == sum(len(wheel.patches) for wheel in cut.wheels)
     with pytest.raises(ValueError, match="iterations must be >= 0"):
         tight.iteration_budget = -1
+
+
+def test_a_per_solve_cap_bounds_warm_solves_only():
+    pose = fastnorm.Pose(lateral_shift_m=2e-3, vertical_m=fastnorm.WheelsetContact(solver="elliptic", elements=20)
+                         .equilibrium(load_n=2e5, lateral_shift_m=2e-3).pose.vertical_m)
+    free = fastnorm.WheelsetContact(solver="elliptic", elements=20).evaluate(pose)
+    capped = fastnorm.WheelsetContact(solver="elliptic", elements=20, warm_solve_iterations=1)
+    first = capped.evaluate(pose)  # cold: not capped, the free model's answer
+    assert first.ok and first.iterations == free.iterations
+    moved = fastnorm.Pose(lateral_shift_m=pose.lateral_shift_m + 0.3e-3, vertical_m=pose.vertical_m)
+    step = capped.evaluate(moved)  # warm: stopped at the cap's first admissible iterate, or converged
+    assert step.ok
+    statuses = {patch.solution.status for wheel in step.wheels for patch in wheel.patches}
+    assert statuses <= {"budget reached", "converged"} and "budget reached" in statuses
+    with pytest.raises(ValueError, match="warm_solve_iterations must be >= 0"):
+        fastnorm.WheelsetContact(solver="elliptic", elements=20, warm_solve_iterations=-1)

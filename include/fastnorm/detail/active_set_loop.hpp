@@ -19,6 +19,7 @@
 #include "fastnorm/influence.hpp"
 #include "fastnorm/solution.hpp"
 #include "fastnorm/solver_options.hpp"
+#include "fastnorm/warm_start.hpp"
 
 namespace fastnorm {
 namespace detail {
@@ -116,8 +117,12 @@ class ActiveSetLoop {
   /// solved next; a run started from that set takes the steps the stopped one would have
   /// taken (the sets, not the cycle check's memory of them), so that a solve limited to a
   /// few iterations a time step and continued at the next is the loop continued across
-  /// steps, not restarted (docs/wheel-rail.md §9, the iteration budget).
-  Solution<Scalar> run(const std::vector<Index>& start_set) {
+  /// steps, not restarted (docs/wheel-rail.md §9, the iteration budget). `stop`: a run
+  /// stops after stop.soft iterations once one of its iterates had all pressures positive
+  /// (admissible), and after stop.hard in any case; with stop.budget a stop at an admissible
+  /// iterate answers with the last such iterate, Status::budget_reached, and any other stop
+  /// with the clipped last iterate, Status::iteration_limit.
+  Solution<Scalar> run(const std::vector<Index>& start_set, const IterationStop& stop) {
     const Index n_all = influence_.grid().size();
     solution_ = std::move(work_.spare_solution);
     solution_.clear(n_all);
@@ -139,7 +144,7 @@ class ActiveSetLoop {
         work_.displacement_floor.resize(static_cast<std::size_t>(n_all));
       }
     }
-    while (solution_.iterations < options_.max_iterations) {
+    while (solution_.iterations < stop.hard) {
       if (work_.seen_before(work_.active)) {
         if (work_.admissible_set.empty()) {  // no set ever had positive pressures: round-off rules
           return finish(Status::numerical_issue,
@@ -152,7 +157,7 @@ class ActiveSetLoop {
       ++solution_.iterations;
       if (!solve_on_set()) return finish(Status::numerical_issue, "factorisation of the system on the active set failed");
       if (drop_non_positive()) {
-        if (solution_.iterations == options_.max_iterations) {  // report this iterate
+        if (solution_.iterations >= stop.hard || (solution_.iterations >= stop.soft && !work_.admissible_set.empty())) {
           work_.next_set = work_.kept;
           break;
         }
@@ -165,16 +170,23 @@ class ActiveSetLoop {
         store(work_.active, work_.columns.view().data(), approach_);
         return finish(Status::converged, "contact set stable");
       }
-      if (solution_.iterations == options_.max_iterations) {  // report this iterate
+      if (solution_.iterations >= stop.soft) {  // report this iterate
         merge_joining(work_.next_set);
         break;
       }
       merge_joining(work_.kept);
       work_.active.swap(work_.kept);
     }
+    // Messages are literals: a cut solve, which a time step's budget makes routine,
+    // allocates nothing.
+    if (stop.budget && !work_.admissible_set.empty()) {
+      // The last admissible iterate: the set just checked for joins, or the one before a
+      // drop; residual_ is still its join check's.
+      store(work_.admissible_set, work_.admissible_pressure.data(), admissible_approach_);
+      return finish(Status::budget_reached, "stopped by the iteration budget; the next solve goes on from here");
+    }
     // The last iterate, its negative pressures clipped, so the caller can inspect it.
     store(work_.active, work_.columns.view().data(), approach_);
-    // A literal: a cut solve, which a time step's budget makes routine, allocates nothing.
     return finish(Status::iteration_limit, "active set still changing at the iteration limit");
   }
 
@@ -408,17 +420,18 @@ class ActiveSetLoop {
   Scalar deepest_ = 0, max_abs_h_ = 0, join_below_ = 0, approach_ = 0, admissible_approach_ = 0, residual_ = 0;
 };
 
-/// Checks the problem and runs the loop (see ActiveSetLoop) from `start_set`, or cold if it
-/// is empty.
+/// Checks the problem and runs the loop (see ActiveSetLoop) from the start's set, or cold
+/// if it is empty, within the start's iteration limit and cap.
 /// @throws fastnorm::invalid_argument for wrong sizes or non-finite h, or a bad Fn
 template <typename Scalar, typename SetSolver>
 Solution<Scalar> solve_active_set(const InfluenceTable<Scalar>& influence,
                                   const Eigen::Ref<const Eigen::Matrix<Scalar, Eigen::Dynamic, 1>>& h,
                                   const Loading<Scalar>& loading, const ActiveSetOptions<Scalar>& options,
                                   SetSolver& set_solver, ActiveSetWorkspace<Scalar>& work,
-                                  const std::vector<Eigen::Index>& start_set) {
+                                  const WarmStart<Scalar>& start) {
   check_problem(influence.grid(), h, loading);
-  return ActiveSetLoop<Scalar, SetSolver>(influence, h, loading, options, set_solver, work).run(start_set);
+  return ActiveSetLoop<Scalar, SetSolver>(influence, h, loading, options, set_solver, work)
+      .run(start.contact_set(), start.stop(options.max_iterations));
 }
 
 /// dFn/dδ at the contact set of `solution` (docs/norm.md §4): on a fixed set I the

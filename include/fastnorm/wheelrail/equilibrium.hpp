@@ -25,6 +25,15 @@
 
 namespace fastnorm::wheelrail {
 
+/// Newton needs each pose's converged force: a per-solve cap would give an iterate that
+/// depends on the steps before (docs/wheel-rail.md §9).
+/// @throws fastnorm::invalid_argument, the message starting with `where`, for a cap
+inline void check_converged_solves(const WheelsetContactOptions& contact, const std::string& where) {
+  FASTNORM_CHECK(contact.warm_solve_iterations == 0,
+                 fastnorm::detail::describe(where + "warm_solve_iterations must be 0 (Newton needs converged patch solves)",
+                                            contact.warm_solve_iterations));
+}
+
 /// Settings of an equilibrium search.
 struct EquilibriumOptions {
   /// The contact model the search evaluates: its patch solver (NORM by default), element
@@ -47,6 +56,7 @@ struct EquilibriumOptions {
   /// @throws fastnorm::invalid_argument naming the offending field
   void validate() const {
     contact.validate();
+    check_converged_solves(contact, "EquilibriumOptions: contact.");
     using fastnorm::detail::check_positive;
     check_positive(force_tolerance, "EquilibriumOptions: force_tolerance");
     check_positive(approach_at_100kN, "EquilibriumOptions: approach_at_100kN (m)");
@@ -568,6 +578,9 @@ Equilibrium solve_equilibrium(WheelsetContact<Solver>& model, double y, double y
   detail::check_two_wheel_input(y, yaw, load, options);
   FASTNORM_CHECK(model.options().stiffness,
                  "equilibrium: the model's options.stiffness must be on (the Newton Jacobian needs it)");
+  check_converged_solves(model.options(), "equilibrium: the model's options.");
+  FASTNORM_CHECK(model.iteration_budget() == 0,
+                 "equilibrium: the model's iteration budget must be 0 (Newton needs converged patch solves)");
   const WheelsetPose start = detail::equilibrium_start(model.track(), model.wheelset(), y, yaw, load, options,
                                                        model.options().search);
   return detail::EquilibriumSearch<Solver>(model.track(), model.wheelset(), {Side::left, Side::right}, load, options)

@@ -156,9 +156,11 @@ class WheelsetContact {
   /// over all its patch solves, in the order it solves them (left wheel first, tread
   /// first), as qpOASES' nWSR: each solve may take what the solves before it left, but at
   /// least one iteration, so a step spends at most the budget plus one per later patch. A
-  /// solve that reaches its share ends with Status::iteration_limit, and the step status
-  /// names it; a solve so cut goes on at the next step from where it stopped
-  /// (docs/wheel-rail.md §9). What a step spent is `iterations` of its result. 0 (the
+  /// solve that reaches its share answers with its last admissible iterate,
+  /// Status::budget_reached (usable; Status::iteration_limit, which the step status names as
+  /// a failure, if it has none), and goes on at the next step from where it stopped
+  /// (docs/wheel-rail.md §9). WheelsetContactOptions::warm_solve_iterations caps each warm
+  /// solve alike. What a step spent is `iterations` of its result. 0 (the
   /// default): no budget, each solve bounded by its solver's max_iterations alone.
   /// @throws fastnorm::invalid_argument for a negative budget
   void set_iteration_budget(int iterations) {
@@ -299,9 +301,9 @@ class WheelsetContact {
     wheel.status.set_ok(side);
     wheel.iterations = 0;
     for (std::size_t k = 0; k < count; ++k) {
-      start_from(successors[k], previous, next[k]);
+      const bool warm = start_from(successors[k], previous, next[k]);
       const PatchContact& patch = wheel.patches[k];
-      next[k].workspace.start().limit_iterations(iteration_budget_ > 0 ? std::max(1, iterations_left_) : 0);
+      limit_solve(warm, next[k].workspace.start());
       solve_patch(pose, next[k], wheel.patches[k]);
       wheel.iterations += patch.solution.iterations;
       iterations_left_ -= patch.solution.iterations;
@@ -362,8 +364,8 @@ class WheelsetContact {
   }
 
   /// The starting contact set of a patch: its predecessors' sets mapped element by element
-  /// onto its grid (a pure shift on the lattice); cold when it has none.
-  void start_from(const std::vector<std::size_t>& predecessors, std::vector<State>& previous, State& state) {
+  /// onto its grid (a pure shift on the lattice); cold when it has none. True if warm.
+  bool start_from(const std::vector<std::size_t>& predecessors, std::vector<State>& previous, State& state) {
     // The workspace follows the patch while its grid keeps its size; otherwise the patch
     // takes a spare one of its new size's solver (the storage of that size, no allocation),
     // or for a reduced solver a spare of another size (its storage reused).
@@ -378,17 +380,25 @@ class WheelsetContact {
     }
     if (!options_.starts_warm() || predecessors.empty()) {
       state.workspace.start().clear();
-      return;
+      return false;
     }
     if (options_.snap_to_lattice && detail::same_box(state, predecessors, previous)) {
       // The same box: NORM's set and CG's pressures are in place in the workspace; a reduced
       // solver keeps no start of its own, so it gets the patch's last contact set as it is.
       const State& from = previous[predecessors.front()];
       if (options_.solver.is_reduced()) state.workspace.start().set_contact_set(from.contact_set);
-      return;
+      return true;
     }
     detail::shifted_contact_set(predecessors, previous, state, dx_, ds_, shifted_set_);
     state.workspace.start().set_contact_set(shifted_set_);
+    return true;
+  }
+
+  /// The limits of the next patch solve: what the budget left, at least one, and for a
+  /// warm solve the per-solve cap (WheelsetContactOptions::warm_solve_iterations).
+  void limit_solve(bool warm, WarmStart<double>& start) const {
+    start.limit_iterations(iteration_budget_ > 0 ? std::max(1, iterations_left_) : 0);
+    start.cap_iterations(warm ? options_.warm_solve_iterations : 0);
   }
 
   /// Solves one patch in approach control and fills its forces and stiffness.
@@ -402,7 +412,7 @@ class WheelsetContact {
     // cut, from the start the solver left, where its iteration would have gone on (the
     // active-set loop's next set; CG's cut answer), so that a budgeted patch keeps its joins
     // and converges over the next steps (docs/wheel-rail.md §9).
-    if (solution.status == Status::iteration_limit) {
+    if (solution.stopped_early()) {
       const auto& continuation = state.workspace.start().contact_set();
       state.contact_set.assign(continuation.begin(), continuation.end());
     } else {

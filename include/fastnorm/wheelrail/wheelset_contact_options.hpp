@@ -95,6 +95,15 @@ struct WheelsetContactOptions {
   Eigen::Index table_box() const {
     return shared_table_box > 0 ? shared_table_box : (3 * grid.elements / 2 + 7) / 8 * 8;
   }
+  /// The iterations (active-set iterations; CG's for CG) after which a warm-started patch
+  /// solve stops in one evaluate, as a real-time iteration: it answers with its last
+  /// iterate whose pressures are all positive, Status::budget_reached (usable: forces,
+  /// stiffness and creep forces as for a converged one), and goes on at the next evaluate
+  /// from where it stopped (docs/wheel-rail.md §9). A stop due after a drop before any such
+  /// iterate waits for the next one (WarmStart::cap_iterations), so a capped solve never
+  /// fails for the cap. A cold solve (a patch's first step, after reset, a cold start) is
+  /// not capped, so a model evaluated once answers converged. 0 (default): no cap.
+  int warm_solve_iterations = 0;
   bool stiffness = true;  ///< compute each patch's dFn/dδ (one extra solve with the last factor)
   CreepOptions creep;     ///< creep forces, when evaluate is given velocities
 
@@ -112,6 +121,9 @@ struct WheelsetContactOptions {
     distance.validate();
     creep.validate();
     fastnorm::detail::check_positive(reference_approach, "WheelsetContactOptions: reference_approach (m)");
+    FASTNORM_CHECK(warm_solve_iterations >= 0,
+                   fastnorm::detail::describe("WheelsetContactOptions: warm_solve_iterations must be >= 0",
+                                              warm_solve_iterations));
     FASTNORM_CHECK(shared_table_box >= 0 && shared_table_box <= PatchGridOptions::max_elements,
                    fastnorm::detail::describe("WheelsetContactOptions: shared_table_box must lie in [0, " +
                                                   std::to_string(PatchGridOptions::max_elements) + "] (elements)",
