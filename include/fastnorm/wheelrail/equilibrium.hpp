@@ -26,7 +26,8 @@
 namespace fastnorm::wheelrail {
 
 /// Newton needs each pose's converged force: a per-solve cap would give an iterate that
-/// depends on the steps before (docs/wheel-rail.md §9).
+/// depends on the steps before (docs/wheel-rail.md §9). The search's own models take no
+/// cap; a model it is given has its cap and budget lifted while it runs (ConvergedSolves).
 /// @throws fastnorm::invalid_argument, the message starting with `where`, for a cap
 inline void check_converged_solves(const WheelsetContactOptions& contact, const std::string& where) {
   FASTNORM_CHECK(contact.warm_solve_iterations == 0,
@@ -127,6 +128,29 @@ inline constexpr double sizing_tolerance = 1e-3;
 inline double approach_guess(double wheel_load, const EquilibriumOptions& options) {
   return options.approach_at_100kN * std::cbrt(std::pow(wheel_load / 1e5, 2));
 }
+
+/// A model's iteration budget and per-solve cap lifted for the scope of an equilibrium
+/// search on it (Newton needs converged solves), and put back after, so that the model goes
+/// on as a capped time loop from the equilibrium found.
+template <typename Solver>
+class ConvergedSolves {
+ public:
+  explicit ConvergedSolves(WheelsetContact<Solver>& model)
+      : model_(model), budget_(model.iteration_budget()), cap_(model.options().warm_solve_iterations) {
+    model_.set_iteration_budget(0);
+    model_.set_warm_solve_iterations(0);
+  }
+  ~ConvergedSolves() {
+    model_.set_iteration_budget(budget_);
+    model_.set_warm_solve_iterations(cap_);
+  }
+  ConvergedSolves(const ConvergedSolves&) = delete;
+  ConvergedSolves& operator=(const ConvergedSolves&) = delete;
+
+ private:
+  WheelsetContact<Solver>& model_;
+  int budget_, cap_;
+};
 
 /// The equilibrium search (docs/wheel-rail.md §5) for the wheels in `sides` carrying `load`;
 /// roll is an unknown only when both wheels are loaded. Newton on (z, roll) with a
@@ -569,7 +593,8 @@ Equilibrium solve_equilibrium(const Track& track, const Wheelset& wheelset, doub
 /// options.force_tolerance. Every pose tried is evaluated from the model's state before the
 /// search (history() and restore()), so that a warm model's force is a function of the pose
 /// during the search; the model's state is then that of its evaluation at the pose returned
-/// (model.reset() forgets it).
+/// (model.reset() forgets it). The model's iteration budget and per-solve cap are lifted
+/// during the search (its solves converge) and put back after.
 /// @throws fastnorm::invalid_argument for bad y, yaw, load or options, or a model without
 ///         stiffness
 template <typename Solver>
@@ -578,9 +603,7 @@ Equilibrium solve_equilibrium(WheelsetContact<Solver>& model, double y, double y
   detail::check_two_wheel_input(y, yaw, load, options);
   FASTNORM_CHECK(model.options().stiffness,
                  "equilibrium: the model's options.stiffness must be on (the Newton Jacobian needs it)");
-  check_converged_solves(model.options(), "equilibrium: the model's options.");
-  FASTNORM_CHECK(model.iteration_budget() == 0,
-                 "equilibrium: the model's iteration budget must be 0 (Newton needs converged patch solves)");
+  const detail::ConvergedSolves<Solver> converged(model);
   const WheelsetPose start = detail::equilibrium_start(model.track(), model.wheelset(), y, yaw, load, options,
                                                        model.options().search);
   return detail::EquilibriumSearch<Solver>(model.track(), model.wheelset(), {Side::left, Side::right}, load, options)

@@ -170,6 +170,15 @@ class WheelsetContact {
   }
   int iteration_budget() const { return iteration_budget_; }
 
+  /// Changes options().warm_solve_iterations, the cap of each warm patch solve, from the
+  /// next evaluate on (0: none).
+  /// @throws fastnorm::invalid_argument for a negative cap
+  void set_warm_solve_iterations(int iterations) {
+    FASTNORM_CHECK(iterations >= 0, fastnorm::detail::describe(
+                                        "WheelsetContact::set_warm_solve_iterations: iterations must be >= 0", iterations));
+    options_.warm_solve_iterations = iterations;
+  }
+
   /// The next evaluate starts cold: no previous patches, no contact sets, no assemblies a
   /// solver kept (storage kept), so that what follows is bit for bit what a new model gives.
   void reset() {
