@@ -113,9 +113,11 @@ class CgSolver : public detail::SolverBase<CgSolver<Scalar>, CgWorkspace<Scalar>
       solution.status = Status::no_contact;
       solution.message = "no element has a negative undeformed distance";
     } else {
-      const Options options = workspace.start_.limited(options_);
-      Iteration iteration{*influence_, options, undeformed_distance, loading, workspace,
-                          workspace.start_.stop(options_.max_iterations).budget};
+      // Every CG iterate is admissible, so it stops at the cap as at the limit.
+      const IterationStop stop = workspace.start_.stop(options_.max_iterations);
+      Options options = options_;
+      options.max_iterations = stop.soft;
+      Iteration iteration{*influence_, options, undeformed_distance, loading, workspace, stop.budget};
       iteration.start();
       iteration.run(solution);
     }
@@ -284,17 +286,17 @@ class CgSolver : public detail::SolverBase<CgSolver<Scalar>, CgWorkspace<Scalar>
                              std::to_string(iteration) + " iterations (modulus or force too large for the precision?)";
           break;
         }
-        if (iteration == options.max_iterations && budgeted) {
-          // Every iterate is projected (p ≥ 0) and in force control scaled to the load, so
-          // the answer is usable; a literal, since a budgeted time step allocates nothing.
-          solution.status = Status::budget_reached;
-          solution.message = "stopped by the iteration budget; the next solve goes on from here";
-          break;
-        }
         if (iteration == options.max_iterations) {
-          solution.status = Status::iteration_limit;
-          solution.message = "complementarity error " + std::to_string(error / (approach - deepest)) + " after " +
-                             std::to_string(iteration) + " iterations";
+          if (budgeted) {
+            // Every iterate is projected (p ≥ 0) and in force control scaled to the load, so
+            // the answer is usable; a literal, since a budgeted time step allocates nothing.
+            solution.status = Status::budget_reached;
+            solution.message = "stopped by the iteration budget; the next solve goes on from here";
+          } else {
+            solution.status = Status::iteration_limit;
+            solution.message = "complementarity error " + std::to_string(error / (approach - deepest)) + " after " +
+                               std::to_string(iteration) + " iterations";
+          }
           break;
         }
         ++iteration;

@@ -43,10 +43,11 @@ enum class Status {
   cycled,           ///< reduced bases only: no set satisfies both conditions in the basis; the
                     ///< last set whose pressures are all positive is returned (usable)
   numerical_issue,  ///< a factorisation failed (matrix not positive definite)
-  budget_reached,   ///< a caller's iteration budget (WarmStart::limit_iterations) stopped the
-                    ///< active-set loop; the answer is its last iterate whose pressures were
-                    ///< all positive (usable, with that iterate's residual), and the next solve
-                    ///< from the same workspace goes on where the loop stopped
+  budget_reached,   ///< a caller's iteration budget or cap (WarmStart::limit_iterations,
+                    ///< cap_iterations) stopped the solve; the answer is its last iterate whose
+                    ///< pressures were all positive (CG: its projected iterate), usable, with
+                    ///< that iterate's residual, and the next solve from the same workspace
+                    ///< goes on where it stopped
 };
 
 inline const char* to_string(Status status) {

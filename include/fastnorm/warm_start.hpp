@@ -65,13 +65,6 @@ class WarmStart {
     FASTNORM_CHECK(limit >= 0, detail::describe("warm start: iteration limit must be >= 0", limit));
     iteration_limit_ = limit;
   }
-  /// `options` with max_iterations lowered to the limit and the cap (any options type with
-  /// one): a solve whose every iterate is admissible (CG) stops at either.
-  template <typename Options>
-  Options limited(Options options) const {
-    options.max_iterations = stop(options.max_iterations).soft;
-    return options;
-  }
   /// A softer bound below the limit (a time loop's cap per solve,
   /// WheelsetContactOptions::warm_solve_iterations): an active-set solve stops after `cap`
   /// iterations at its last admissible iterate, Status::budget_reached, as at the limit;

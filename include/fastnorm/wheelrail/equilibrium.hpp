@@ -25,16 +25,6 @@
 
 namespace fastnorm::wheelrail {
 
-/// Newton needs each pose's converged force: a per-solve cap would give an iterate that
-/// depends on the steps before (docs/wheel-rail.md §9). The search's own models take no
-/// cap; a model it is given has its cap and budget lifted while it runs (ConvergedSolves).
-/// @throws fastnorm::invalid_argument, the message starting with `where`, for a cap
-inline void check_converged_solves(const WheelsetContactOptions& contact, const std::string& where) {
-  FASTNORM_CHECK(contact.warm_solve_iterations == 0,
-                 fastnorm::detail::describe(where + "warm_solve_iterations must be 0 (Newton needs converged patch solves)",
-                                            contact.warm_solve_iterations));
-}
-
 /// Settings of an equilibrium search.
 struct EquilibriumOptions {
   /// The contact model the search evaluates: its patch solver (NORM by default), element
@@ -57,7 +47,13 @@ struct EquilibriumOptions {
   /// @throws fastnorm::invalid_argument naming the offending field
   void validate() const {
     contact.validate();
-    check_converged_solves(contact, "EquilibriumOptions: contact.");
+    // Newton needs each pose's converged force, not a capped iterate that depends on the
+    // steps before (docs/wheel-rail.md §9); a model given to the search has its cap lifted
+    // while it runs instead (detail::ConvergedSolves).
+    FASTNORM_CHECK(contact.warm_solve_iterations == 0,
+                   fastnorm::detail::describe(
+                       "EquilibriumOptions: contact.warm_solve_iterations must be 0 (Newton needs converged patch solves)",
+                       contact.warm_solve_iterations));
     using fastnorm::detail::check_positive;
     check_positive(force_tolerance, "EquilibriumOptions: force_tolerance");
     check_positive(approach_at_100kN, "EquilibriumOptions: approach_at_100kN (m)");
