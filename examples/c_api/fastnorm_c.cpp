@@ -159,6 +159,16 @@ void apply_max_iterations(int max_iterations, fastnorm::SolverSpec<double>& spec
   if (max_iterations > 0) spec.set_max_iterations(max_iterations);
 }
 
+// options.tolerance and options.gap_tolerance of the C structs: 0 keeps the solver's
+// default; a tolerance for a solver it does not apply to is refused (SolverSpec).
+void apply_tolerances(double tolerance, double gap_tolerance, fastnorm::SolverSpec<double>& spec) {
+  FASTNORM_CHECK(std::isfinite(tolerance) && tolerance >= 0, fastnorm::describe("options.tolerance must be >= 0", tolerance));
+  FASTNORM_CHECK(std::isfinite(gap_tolerance) && gap_tolerance >= 0,
+                 fastnorm::describe("options.gap_tolerance must be >= 0", gap_tolerance));
+  if (tolerance > 0) spec.set_cg_tolerance(tolerance);
+  if (gap_tolerance > 0) spec.set_gap_tolerance(gap_tolerance);
+}
+
 void copy3(const Eigen::Vector3d& from, double* to) {
   for (int k = 0; k < 3; ++k) to[k] = from(k);
 }
@@ -234,9 +244,7 @@ int fastnorm_solver_create(const char* name, const fastnorm_grid* grid, const fa
     auto spec = fastnorm::SolverSpec<double>::parse(name);
     if (options) {
       apply_max_iterations(options->max_iterations, spec);
-      FASTNORM_CHECK(std::isfinite(options->tolerance) && options->tolerance >= 0,
-                     fastnorm::describe("options.tolerance must be >= 0", options->tolerance));
-      if (options->tolerance > 0) spec.cg.tolerance = options->tolerance;
+      apply_tolerances(options->tolerance, options->gap_tolerance, spec);
     }
     *solver = new fastnorm_solver{fastnorm::AnySolver<double>(spec, grid_of(grid), material_of(material)), {}};
   });
@@ -440,6 +448,7 @@ int fastnorm_wheelset_create(const fastnorm_wheelset_options* options, fastnorm_
     contact.grid.elements = options->elements;
     contact.stiffness = options->stiffness != 0;
     apply_max_iterations(options->max_iterations, contact.solver);
+    apply_tolerances(options->tolerance, options->gap_tolerance, contact.solver);
     contact.distance.tolerance = options->distance_tolerance;
     contact.distance_everywhere = options->distance_everywhere != 0;
     FASTNORM_CHECK(options->warm_solve_iterations >= 0,

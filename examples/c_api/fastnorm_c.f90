@@ -48,7 +48,8 @@ module fastnorm_c
 
   type, bind(c) :: fastnorm_solver_options
     integer(c_int) :: max_iterations
-    real(c_double) :: tolerance
+    real(c_double) :: tolerance      ! CG only; 0: the default
+    real(c_double) :: gap_tolerance  ! NORM and the reduced solvers only; 0: the default
   end type
 
   ! Creepages of the rail (body 1) against the wheel: xi, eta, phi (rad/m), spin centre (m).
@@ -76,6 +77,7 @@ module fastnorm_c
     integer(c_int) :: creep_method  ! FASTNORM_STRIP_THEORY (default) or FASTNORM_FASTSIM
     integer(c_int) :: distance_everywhere  ! 1: h on every element; 0 (default): where it can touch
     integer(c_int) :: warm_solve_iterations  ! cap of each warm patch solve; 0 (default): none
+    real(c_double) :: tolerance, gap_tolerance  ! of each patch solve, as in fastnorm_solver_options
   end type
 
   type, bind(c) :: fastnorm_pose

@@ -80,9 +80,12 @@ typedef struct fastnorm_result {
 
 /* Solver settings; 0 (or 0.0) in a field keeps the solver's default. */
 typedef struct fastnorm_solver_options {
-  int max_iterations;  /* active-set solves (default 200) or CG iterations (5000) */
-  double tolerance;    /* CG: complementarity tolerance (default 1e-9) */
+  int max_iterations;   /* active-set solves (default 200) or CG iterations (5000) */
+  double tolerance;     /* CG only: its stopping (complementarity) tolerance (default 1e-9) */
+  double gap_tolerance; /* NORM and the reduced solvers only: the join tolerance, relative to max|h|
+                           (default 1000 eps for NORM, 3e-5 for the reduced solvers; docs/norm.md §2) */
 } fastnorm_solver_options;
+/* A tolerance set (> 0) for a solver it does not apply to is refused (FASTNORM_ERROR_ARGUMENT). */
 
 typedef struct fastnorm_solver fastnorm_solver;
 
@@ -198,6 +201,8 @@ typedef struct fastnorm_wheelset_options {
   int warm_solve_iterations;  /* the most iterations of each warm-started patch solve in an evaluate
                                  (FASTNORM_BUDGET_REACHED at the cap, continued at the next); cold
                                  solves uncapped; 0 (default): none (docs/wheel-rail.md §9) */
+  double tolerance;           /* of each patch solve, as in fastnorm_solver_options (CG only); 0: the default */
+  double gap_tolerance;       /* of each patch solve, as in fastnorm_solver_options (not CG); 0: the default */
 } fastnorm_wheelset_options;
 
 /* Fills the defaults: "norm", S1002 on UIC60, radius 0.45 m, gauge 1.435 m, cant 1/40,

@@ -181,11 +181,13 @@ fastnorm::Loading<double> loading_of(std::optional<double> normal_force) {
   return normal_force ? fastnorm::Loading<double>::force(*normal_force) : fastnorm::Loading<double>::approach();
 }
 
+// A tolerance given for a solver it does not apply to is refused (SolverSpec::set_cg_tolerance).
 fastnorm::SolverSpec<double> spec_of(const std::string& name, std::optional<int> max_iterations,
-                                     std::optional<double> tolerance) {
+                                     std::optional<double> tolerance, std::optional<double> gap_tolerance) {
   auto spec = fastnorm::SolverSpec<double>::parse(name);
   if (max_iterations) spec.set_max_iterations(*max_iterations);
-  if (tolerance) spec.cg.tolerance = *tolerance;
+  if (tolerance) spec.set_cg_tolerance(*tolerance);
+  if (gap_tolerance) spec.set_gap_tolerance(*gap_tolerance);
   spec.validate();
   return spec;
 }
@@ -195,8 +197,8 @@ fastnorm::SolverSpec<double> spec_of(const std::string& name, std::optional<int>
 class PySolver {
  public:
   PySolver(const std::string& name, const Grid& grid, const Material& material, std::optional<int> max_iterations,
-           std::optional<double> tolerance)
-      : solver_(spec_of(name, max_iterations, tolerance), grid, material) {}
+           std::optional<double> tolerance, std::optional<double> gap_tolerance)
+      : solver_(spec_of(name, max_iterations, tolerance, gap_tolerance), grid, material) {}
 
   PySolution solve(const InputArray& undeformed_distance, std::optional<double> normal_force) const {
     const Eigen::VectorXd h = values_on(grid(), undeformed_distance, "undeformed_distance_m");
@@ -464,7 +466,8 @@ std::unique_ptr<PyWheelset> make_wheelset(const std::string& solver, Eigen::Inde
                                           std::optional<std::string> wheel_profile,
                                           std::optional<std::string> rail_profile, double nominal_radius,
                                           double gauge, double cant, const Material& material, bool stiffness,
-                                          std::optional<int> max_iterations, double distance_tolerance,
+                                          std::optional<int> max_iterations, std::optional<double> tolerance,
+                                          std::optional<double> gap_tolerance, double distance_tolerance,
                                           bool distance_everywhere, std::optional<double> friction,
                                           const std::string& creep_method, int warm_solve_iterations) {
   wr::WheelsetOnTrack setup;
@@ -474,7 +477,7 @@ std::unique_ptr<PyWheelset> make_wheelset(const std::string& solver, Eigen::Inde
   setup.gauge = gauge;
   setup.cant = cant;
   wr::WheelsetContactOptions options;
-  options.solver = spec_of(solver, max_iterations, std::nullopt);
+  options.solver = spec_of(solver, max_iterations, tolerance, gap_tolerance);
   options.grid.elements = elements;
   options.material = material;
   options.stiffness = stiffness;
@@ -554,10 +557,13 @@ void bind_basics(py::module_& m) {
   py::class_<PySolver>(m, "Solver",
                        "A solver on a grid and material, by name: 'norm', 'cg', 'elliptic', 'polynomial[:G]', "
                        "'elliptic-edge[:K]', 'polynomial-edge[:G[:K]]'. max_iterations: active-set solves (200) or "
-                       "CG iterations (5000); tolerance: CG's (1e-9); None keeps the default.")
-      .def(py::init<const std::string&, const Grid&, const Material&, std::optional<int>, std::optional<double>>(),
+                       "CG iterations (5000); tolerance: CG's stopping tolerance (1e-9), CG only; gap_tolerance: the "
+                       "join tolerance of NORM and the reduced solvers (relative to max|h|; NORM 1000 eps, reduced "
+                       "3e-5), not CG; None keeps the default. A tolerance for a solver it does not apply to raises.")
+      .def(py::init<const std::string&, const Grid&, const Material&, std::optional<int>, std::optional<double>,
+                    std::optional<double>>(),
            "name"_a, "grid"_a, "material"_a, py::kw_only(), "max_iterations"_a = py::none(),
-           "tolerance"_a = py::none())
+           "tolerance"_a = py::none(), "gap_tolerance"_a = py::none())
       .def("solve", &PySolver::solve, "undeformed_distance_m"_a, py::kw_only(), "normal_force_n"_a = py::none(),
            "A cold solve on h (m, + = gap, shape (my, mx)). Without normal_force_n: approach control, h holds the "
            "approach; with it (N): force control. Threads may call it at once; the GIL is released.")
@@ -857,14 +863,15 @@ void bind_wheelset(py::module_& m) {
                          "Coulomb's mu of every patch, for creep forces when evaluate is given a Velocity; "
                          "creep_method: 'strip_theory' (default) or 'fastsim'. warm_solve_iterations: the most "
                          "iterations of each warm-started patch solve in an evaluate (status 'budget reached' at the "
-                         "cap, continued at the next evaluate; cold solves uncapped; 0: none). "
+                         "cap, continued at the next evaluate; cold solves uncapped; 0: none). max_iterations, "
+                         "tolerance and gap_tolerance: each patch solver's, as for Solver. "
                          "Calls on one model run one at a time.")
       .def(py::init(&make_wheelset), py::kw_only(), "solver"_a = "norm", "elements"_a = 60,
            "wheel_profile"_a = py::none(), "rail_profile"_a = py::none(),
            "nominal_radius_m"_a = wr::WheelsetLayout().nominal_radius, "gauge_m"_a = wr::TrackLayout().gauge,
            "cant_rad"_a = wr::TrackLayout().cant, "material"_a = Material::steel(), "stiffness"_a = true,
-           "max_iterations"_a = py::none(), "distance_tolerance_m"_a = wr::DistanceAccuracy().tolerance,
-           "distance_everywhere"_a = false, "friction"_a = py::none(), "creep_method"_a = "strip_theory",
+           "max_iterations"_a = py::none(), "tolerance"_a = py::none(), "gap_tolerance"_a = py::none(),
+           "distance_tolerance_m"_a = wr::DistanceAccuracy().tolerance, "distance_everywhere"_a = false, "friction"_a = py::none(), "creep_method"_a = "strip_theory",
            "warm_solve_iterations"_a = 0)
       .def(
           "evaluate",

@@ -92,6 +92,31 @@ struct SolverSpec {
   /// reduced kinds) or CG iterations.
   void set_max_iterations(int count) { active_set.max_iterations = cg.max_iterations = count; }
 
+  /// CG's stopping tolerance, `cg.tolerance` (CgOptions). The bindings set tolerances
+  /// through these two, so that a tolerance given for a kind it does not apply to is
+  /// refused, not ignored; a refused value leaves the spec as it was.
+  /// @throws fastnorm::invalid_argument for a spec that is not CG, or a bad value
+  void set_cg_tolerance(Scalar tolerance) {
+    FASTNORM_CHECK(kind == Kind::cg, "solver spec: tolerance is the CG solver's stopping tolerance; '" + name() +
+                                         "' is an active-set solver, whose join tolerance is gap_tolerance");
+    CgOptions<Scalar> checked = cg;
+    checked.tolerance = tolerance;
+    checked.validate();
+    cg = checked;
+  }
+
+  /// The join check's τ of NORM and the reduced kinds, `active_set.gap_tolerance`
+  /// (ActiveSetOptions; relative to max|h|).
+  /// @throws fastnorm::invalid_argument for CG, or a bad value
+  void set_gap_tolerance(Scalar tolerance) {
+    FASTNORM_CHECK(kind != Kind::cg, "solver spec: gap_tolerance is the join tolerance of the active-set solvers; "
+                                     "'cg' stops by its tolerance");
+    ActiveSetOptions<Scalar> checked = active_set;
+    checked.gap_tolerance = tolerance;
+    checked.validate();
+    active_set = checked;
+  }
+
   /// One of the reduced strip-basis kinds.
   bool is_reduced() const { return kind != Kind::norm && kind != Kind::cg; }
 

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "fastnorm_c.h"
+#include "support/surfaces.hpp"
 
 namespace wr = fastnorm::wheelrail;
 
@@ -218,4 +219,71 @@ TEST_CASE("The C API's iteration budget and the work it reports are the C++ mode
   CHECK(fastnorm_wheelset_set_iteration_budget(c_model, -1) == FASTNORM_ERROR_ARGUMENT);
   CHECK(std::string(fastnorm_last_error()).find("iterations must be >= 0") != std::string::npos);
   fastnorm_wheelset_destroy(c_model);
+}
+
+TEST_CASE("The C API's solver tolerances are the C++ spec's, and refused where they do not apply", "[cli][c_api]") {
+  // A Hertz problem in force control: a loose join tolerance for the elliptic basis and a
+  // loose stopping tolerance for CG, through fastnorm_solver_options and through the spec.
+  const fastnorm::Material<> steel(2.1e11, 0.3);
+  const auto [grid, h, loading] = fastnorm::test::hertz_ellipsoid(24);
+  const fastnorm_grid c_grid = {static_cast<int>(grid.mx()), static_cast<int>(grid.my()), grid.dx(), grid.dy(),
+                                grid.x0(), grid.y0()};
+  const fastnorm_material c_steel = {2.1e11, 0.3, 2.1e11, 0.3};
+  struct Setting {
+    const char* solver;
+    fastnorm_solver_options options;
+  };
+  for (const Setting& setting : {Setting{"elliptic", {0, 0, 1e-2}}, Setting{"cg", {0, 1e-4, 0}}}) {
+    INFO(setting.solver);
+    auto spec = fastnorm::SolverSpec<double>::parse(setting.solver);
+    if (setting.options.tolerance > 0) spec.set_cg_tolerance(setting.options.tolerance);
+    if (setting.options.gap_tolerance > 0) spec.set_gap_tolerance(setting.options.gap_tolerance);
+    const auto cpp = fastnorm::AnySolver<>(spec, grid, steel).solve(h, loading);
+    const auto by_default = fastnorm::AnySolver<>(setting.solver, grid, steel).solve(h, loading);
+    CHECK(cpp.iterations != by_default.iterations);  // the tolerance takes effect
+    fastnorm_solver* solver = nullptr;
+    REQUIRE_C_OK(fastnorm_solver_create(setting.solver, &c_grid, &c_steel, &setting.options, &solver));
+    std::vector<double> pressure(static_cast<std::size_t>(grid.size()));
+    fastnorm_result result{};
+    const int status = fastnorm_solve_force(solver, h.data(), 5e4, pressure.data(), &result);
+    fastnorm_solver_destroy(solver);
+    REQUIRE(status == FASTNORM_OK);
+    CHECK(result.iterations == cpp.iterations);
+    CHECK(Eigen::Map<const Eigen::VectorXd>(pressure.data(), grid.size()) == cpp.pressure);
+  }
+  const auto refused = [&](const char* name, const fastnorm_solver_options& options, const std::string& message) {
+    INFO(name << ": " << message);
+    fastnorm_solver* solver = nullptr;
+    CHECK(fastnorm_solver_create(name, &c_grid, &c_steel, &options, &solver) == FASTNORM_ERROR_ARGUMENT);
+    CHECK(solver == nullptr);
+    CHECK(std::string(fastnorm_last_error()).find(message) != std::string::npos);
+  };
+  refused("elliptic", {0, 1e-6, 0}, "'elliptic' is an active-set solver, whose join tolerance is gap_tolerance");
+  refused("cg", {0, 0, 1e-6}, "gap_tolerance is the join tolerance of the active-set solvers");
+  refused("norm", {0, 0, -1}, "options.gap_tolerance must be >= 0");
+
+  // The wheelset model's patch solvers take them alike.
+  fastnorm_wheelset_options c_options;
+  fastnorm_wheelset_options_default(&c_options);
+  c_options.solver = "elliptic";
+  c_options.elements = 24;
+  c_options.gap_tolerance = 1e-2;
+  fastnorm_wheelset* c_model = nullptr;
+  REQUIRE_C_OK(fastnorm_wheelset_create(&c_options, &c_model));
+  wr::WheelsetContactOptions options;
+  options.solver = fastnorm::SolverSpec<double>::parse("elliptic");
+  options.solver.set_gap_tolerance(1e-2);
+  options.grid.elements = 24;
+  wr::WheelsetOnTrack setup;
+  wr::WheelsetContact<> model(setup.track(), setup.wheelset(), options);
+  const wr::WheelsetPose pose = pressed(model, 2e-3, 0, 0.1e-3);
+  const fastnorm_pose c_pose = {pose.y, pose.z, pose.roll, pose.yaw};
+  const auto& cpp = model.evaluate(pose);
+  double force[3];
+  REQUIRE_C_OK(fastnorm_wheelset_evaluate(c_model, &c_pose, force, nullptr));
+  fastnorm_wheelset_destroy(c_model);
+  check_equal(force, cpp.force);
+  c_options.solver = "cg";
+  CHECK(fastnorm_wheelset_create(&c_options, &c_model) == FASTNORM_ERROR_ARGUMENT);
+  CHECK(std::string(fastnorm_last_error()).find("gap_tolerance") != std::string::npos);
 }

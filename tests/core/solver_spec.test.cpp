@@ -4,6 +4,8 @@
 #include <fastnorm/hertz.hpp>
 #include <fastnorm/solvers.hpp>
 
+#include "support/surfaces.hpp"
+
 using Catch::Matchers::Contains;
 using Spec = fastnorm::SolverSpec<>;
 
@@ -45,10 +47,7 @@ TEST_CASE("Bad solver names and fields are rejected by name", "[core][spec]") {
 
 TEST_CASE("Every option of a spec reaches its solver", "[core][spec]") {
   const fastnorm::Material<> steel(2.1e11, 0.3);
-  const auto hertz = fastnorm::hertz_from_force(0.3, 0.2, steel.combined_modulus(), 5e4);
-  const auto grid = fastnorm::hertz_grid(hertz, 16, 1.4);
-  const Eigen::VectorXd h = fastnorm::hertz_undeformed_distance(grid, 0.3, 0.2);
-  const auto loading = fastnorm::Loading<>::force(5e4);
+  const auto [grid, h, loading] = fastnorm::test::hertz_ellipsoid(16);
 
   auto cg = Spec::parse("cg");
   cg.cg.max_iterations = 2;
@@ -70,4 +69,26 @@ TEST_CASE("Every option of a spec reaches its solver", "[core][spec]") {
   const fastnorm::AnySolver<> tabled("elliptic", grid, steel);
   CHECK(untabled.solve(h, loading).normal_force == Approx(tabled.solve(h, loading).normal_force).epsilon(1e-12));
   CHECK(untabled.spec().table_budget_bytes == 0);
+}
+
+TEST_CASE("A tolerance is set for the kinds it applies to and refused for the others", "[core][spec]") {
+  auto cg = Spec::parse("cg");
+  cg.set_cg_tolerance(1e-4);
+  CHECK(cg.cg.tolerance == 1e-4);
+  CHECK_THROWS_WITH(cg.set_cg_tolerance(0), Contains("tolerance must be positive"));
+  CHECK_THROWS_WITH(cg.set_gap_tolerance(1e-3), Contains("'cg' stops by its tolerance"));
+  CHECK_FALSE(cg.active_set.gap_tolerance);  // a refused setting leaves the spec as it was
+  for (const char* name : {"norm", "elliptic", "polynomial-edge:4:1"}) {
+    INFO(name);
+    auto spec = Spec::parse(name);
+    spec.set_gap_tolerance(1e-3);
+    REQUIRE(spec.active_set.gap_tolerance);
+    CHECK(*spec.active_set.gap_tolerance == 1e-3);
+    CHECK(spec.active_set.join_tolerance(spec.kind == Spec::Kind::norm) == 1e-3);
+    CHECK_THROWS_WITH(spec.set_gap_tolerance(-1), Contains("gap_tolerance must be finite and >= 0"));
+    CHECK(*spec.active_set.gap_tolerance == 1e-3);
+    const double before = spec.cg.tolerance;
+    CHECK_THROWS_WITH(spec.set_cg_tolerance(1e-6), Contains("is an active-set solver, whose join tolerance is gap_tolerance"));
+    CHECK(spec.cg.tolerance == before);
+  }
 }

@@ -10,6 +10,8 @@
 #include <string>
 #include <vector>
 
+#include "support/surfaces.hpp"
+
 using Catch::Matchers::Contains;
 
 namespace {
@@ -140,10 +142,7 @@ TEST_CASE("A bad starting set is rejected by name", "[sequence][workspace]") {
 
 TEST_CASE("A workspace moves between solvers and grids", "[sequence][workspace]") {
   const Problem fine = indenter(0);
-  const auto coarse_hertz = fastnorm::hertz_from_force(0.3, 0.2, steel.combined_modulus(), 5e4);
-  const auto coarse_grid = fastnorm::hertz_grid(coarse_hertz, 12, 1.4);
-  const Eigen::VectorXd coarse_h = fastnorm::hertz_undeformed_distance(coarse_grid, 0.3, 0.2);
-  const auto loading = fastnorm::Loading<>::force(5e4);
+  const auto [coarse_grid, coarse_h, loading] = fastnorm::test::hertz_ellipsoid(12);
   fastnorm::AnySolver<>::Workspace workspace;
   for (const char* name : every_solver) {
     INFO(name);

@@ -4,8 +4,28 @@
 #include <algorithm>
 #include <cmath>
 #include <fastnorm/grid.hpp>
+#include <fastnorm/hertz.hpp>
+#include <fastnorm/material.hpp>
+#include <fastnorm/solution.hpp>
 
 namespace fastnorm::test {
+
+/// The force-controlled Hertz problem many solver tests solve: an ellipsoid of radii 0.3 m
+/// and 0.2 m on steel (E 210 GPa, ν 0.3) under 50 kN, on a grid of `elements` across 1.4
+/// times its contact.
+struct HertzEllipsoid {
+  fastnorm::Grid<> grid;
+  Eigen::VectorXd h;
+  fastnorm::Loading<> loading;
+};
+
+inline HertzEllipsoid hertz_ellipsoid(Eigen::Index elements) {
+  const double force = 5e4;
+  const auto contact =
+      fastnorm::hertz_from_force(0.3, 0.2, fastnorm::Material<>(2.1e11, 0.3).combined_modulus(), force);
+  const auto grid = fastnorm::hertz_grid(contact, elements, 1.4);
+  return {grid, fastnorm::hertz_undeformed_distance(grid, 0.3, 0.2), fastnorm::Loading<>::force(force)};
+}
 
 /// A non-Hertzian surface: two bumps of different radii side by side and a waviness, so
 /// that the contact has two patches (and approach control interpenetrates both).

@@ -31,7 +31,8 @@ class Options(ctypes.Structure):
                 ("material", Material), ("elements", ctypes.c_int), ("stiffness", ctypes.c_int),
                 ("max_iterations", ctypes.c_int), ("distance_tolerance", ctypes.c_double),
                 ("friction", ctypes.c_double), ("creep_method", ctypes.c_int),
-                ("distance_everywhere", ctypes.c_int), ("warm_solve_iterations", ctypes.c_int)]
+                ("distance_everywhere", ctypes.c_int), ("warm_solve_iterations", ctypes.c_int),
+                ("tolerance", ctypes.c_double), ("gap_tolerance", ctypes.c_double)]
 
 
 class Pose(ctypes.Structure):
@@ -133,3 +134,39 @@ def test_the_moving_wheelset_gives_the_c_apis_numbers(c_api, method, c_method):
                     assert np.array_equal(ts, traction.traction_y_pa)
     finally:
         c_api.fastnorm_wheelset_destroy(model)
+
+
+class SolverOptions(ctypes.Structure):
+    _fields_ = [("max_iterations", ctypes.c_int), ("tolerance", ctypes.c_double), ("gap_tolerance", ctypes.c_double)]
+
+
+class Result(ctypes.Structure):
+    _fields_ = [(n, ctypes.c_int) for n in ("status", "iterations", "contact_count", "at_edge")] + \
+               [(n, ctypes.c_double) for n in ("normal_force", "approach", "residual")]
+
+
+@pytest.mark.parametrize("name, settings", [("elliptic", dict(gap_tolerance=1e-2)), ("cg", dict(tolerance=1e-4))])
+def test_a_solvers_tolerances_give_the_c_apis_numbers(c_api, name, settings):
+    # A sphere of radius 10 mm pressed with 2 kN (Hertz radius 0.5 mm) on 24 x 24 elements.
+    grid = fastnorm.Grid(24, 24, 1e-4, 1e-4, -11.5e-4, -11.5e-4)
+    x = grid.x0_m + grid.dx_m * np.arange(grid.mx)
+    y = grid.y0_m + grid.dy_m * np.arange(grid.my)
+    h = np.ascontiguousarray((x[None, :] ** 2 + y[:, None] ** 2) / (2 * 0.01))
+    steel = fastnorm.Material(2.1e11, 0.3)
+    python = fastnorm.Solver(name, grid, steel, **settings).solve(h, normal_force_n=2e3)
+    assert python.iterations != fastnorm.Solver(name, grid, steel).solve(h, normal_force_n=2e3).iterations
+    c_grid = Grid(grid.mx, grid.my, grid.dx_m, grid.dy_m, grid.x0_m, grid.y0_m)
+    c_steel = Material(2.1e11, 0.3, 2.1e11, 0.3)
+    options = SolverOptions(0, settings.get("tolerance", 0.0), settings.get("gap_tolerance", 0.0))
+    solver = ctypes.c_void_p()
+    require_ok(c_api, c_api.fastnorm_solver_create(name.encode(), ctypes.byref(c_grid), ctypes.byref(c_steel),
+                                                   ctypes.byref(options), ctypes.byref(solver)))
+    pressure, result = np.empty(grid.shape), Result()
+    try:
+        double_p = ctypes.POINTER(ctypes.c_double)
+        require_ok(c_api, c_api.fastnorm_solve_force(solver, h.ctypes.data_as(double_p), ctypes.c_double(2e3),
+                                                     pressure.ctypes.data_as(double_p), ctypes.byref(result)))
+    finally:
+        c_api.fastnorm_solver_destroy(solver)
+    assert result.iterations == python.iterations
+    assert np.array_equal(pressure, python.pressure_pa)
