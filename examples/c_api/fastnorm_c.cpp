@@ -428,6 +428,7 @@ void fastnorm_wheelset_options_default(fastnorm_wheelset_options* options) {
   options->elements = static_cast<int>(wr::PatchGridOptions().elements);
   options->stiffness = 1;
   options->distance_tolerance = wr::DistanceAccuracy().tolerance;
+  options->distance_node_spacing = wr::DistanceAccuracy().node_spacing;
 }
 
 int fastnorm_wheelset_create(const fastnorm_wheelset_options* options, fastnorm_wheelset** model) {
@@ -450,6 +451,7 @@ int fastnorm_wheelset_create(const fastnorm_wheelset_options* options, fastnorm_
     apply_max_iterations(options->max_iterations, contact.solver);
     apply_tolerances(options->tolerance, options->gap_tolerance, contact.solver);
     contact.distance.tolerance = options->distance_tolerance;
+    contact.distance.node_spacing = options->distance_node_spacing;
     contact.distance_everywhere = options->distance_everywhere != 0;
     FASTNORM_CHECK(options->warm_solve_iterations >= 0,
                    fastnorm::describe("options.warm_solve_iterations must be >= 0 (0: none)",

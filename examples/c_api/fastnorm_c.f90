@@ -78,6 +78,7 @@ module fastnorm_c
     integer(c_int) :: distance_everywhere  ! 1: h on every element; 0 (default): where it can touch
     integer(c_int) :: warm_solve_iterations  ! cap of each warm patch solve; 0 (default): none
     real(c_double) :: tolerance, gap_tolerance  ! of each patch solve, as in fastnorm_solver_options
+    real(c_double) :: distance_node_spacing  ! between the exact nodes of h along a row (m, default 3e-3)
   end type
 
   type, bind(c) :: fastnorm_pose

@@ -203,10 +203,13 @@ typedef struct fastnorm_wheelset_options {
                                  solves uncapped; 0 (default): none (docs/wheel-rail.md §9) */
   double tolerance;           /* of each patch solve, as in fastnorm_solver_options (CG only); 0: the default */
   double gap_tolerance;       /* of each patch solve, as in fastnorm_solver_options (not CG); 0: the default */
+  double distance_node_spacing; /* distance between the exact nodes of h along a row (m, default 3e-3, > 0;
+                                   docs/wheel-rail.md §4, item 7; docs/performance.md §8 its cost) */
 } fastnorm_wheelset_options;
 
 /* Fills the defaults: "norm", S1002 on UIC60, radius 0.45 m, gauge 1.435 m, cant 1/40,
- * steel (E 210 GPa, nu 0.3) for both bodies, 60 elements, stiffness on, h within 1e-10 m.
+ * steel (E 210 GPa, nu 0.3) for both bodies, 60 elements, stiffness on, h within 1e-10 m
+ * between nodes 3 mm apart.
  * Change fields after. */
 FASTNORM_C_API void fastnorm_wheelset_options_default(fastnorm_wheelset_options* options);
 

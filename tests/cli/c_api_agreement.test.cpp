@@ -262,18 +262,22 @@ TEST_CASE("The C API's solver tolerances are the C++ spec's, and refused where t
   refused("cg", {0, 0, 1e-6}, "gap_tolerance is the join tolerance of the active-set solvers");
   refused("norm", {0, 0, -1}, "options.gap_tolerance must be >= 0");
 
-  // The wheelset model's patch solvers take them alike.
+  // The wheelset model's patch solvers take them alike (and h its node spacing).
   fastnorm_wheelset_options c_options;
   fastnorm_wheelset_options_default(&c_options);
+  CHECK(c_options.distance_node_spacing == wr::DistanceAccuracy().node_spacing);
   c_options.solver = "elliptic";
   c_options.elements = 24;
   c_options.gap_tolerance = 1e-2;
+  c_options.distance_tolerance = 5e-10;
+  c_options.distance_node_spacing = 5e-3;
   fastnorm_wheelset* c_model = nullptr;
   REQUIRE_C_OK(fastnorm_wheelset_create(&c_options, &c_model));
   wr::WheelsetContactOptions options;
   options.solver = fastnorm::SolverSpec<double>::parse("elliptic");
   options.solver.set_gap_tolerance(1e-2);
   options.grid.elements = 24;
+  options.distance = {5e-10, 5e-3};
   wr::WheelsetOnTrack setup;
   wr::WheelsetContact<> model(setup.track(), setup.wheelset(), options);
   const wr::WheelsetPose pose = pressed(model, 2e-3, 0, 0.1e-3);
@@ -283,6 +287,10 @@ TEST_CASE("The C API's solver tolerances are the C++ spec's, and refused where t
   REQUIRE_C_OK(fastnorm_wheelset_evaluate(c_model, &c_pose, force, nullptr));
   fastnorm_wheelset_destroy(c_model);
   check_equal(force, cpp.force);
+  c_options.distance_node_spacing = 0;
+  CHECK(fastnorm_wheelset_create(&c_options, &c_model) == FASTNORM_ERROR_ARGUMENT);
+  CHECK(std::string(fastnorm_last_error()).find("node_spacing") != std::string::npos);
+  c_options.distance_node_spacing = 5e-3;
   c_options.solver = "cg";
   CHECK(fastnorm_wheelset_create(&c_options, &c_model) == FASTNORM_ERROR_ARGUMENT);
   CHECK(std::string(fastnorm_last_error()).find("gap_tolerance") != std::string::npos);

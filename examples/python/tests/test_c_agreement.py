@@ -32,7 +32,8 @@ class Options(ctypes.Structure):
                 ("max_iterations", ctypes.c_int), ("distance_tolerance", ctypes.c_double),
                 ("friction", ctypes.c_double), ("creep_method", ctypes.c_int),
                 ("distance_everywhere", ctypes.c_int), ("warm_solve_iterations", ctypes.c_int),
-                ("tolerance", ctypes.c_double), ("gap_tolerance", ctypes.c_double)]
+                ("tolerance", ctypes.c_double), ("gap_tolerance", ctypes.c_double),
+                ("distance_node_spacing", ctypes.c_double)]
 
 
 class Pose(ctypes.Structure):

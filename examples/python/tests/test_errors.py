@@ -45,6 +45,7 @@ def sphere_gap(grid, approach_m=1e-5, radius_m=0.005):
          "path"),
         (lambda: fastnorm.WheelsetContact(elements=2), "elements"),
         (lambda: fastnorm.WheelsetContact(distance_tolerance_m=-1e-10), "tolerance"),
+        (lambda: fastnorm.WheelsetContact(distance_node_spacing_m=0.0), "node_spacing"),
         (lambda: fastnorm.WheelsetContact(nominal_radius_m=-0.45), "nominal_radius must be positive"),
         (lambda: fastnorm.WheelsetContact(gauge_m=math.nan), "gauge must be positive"),
         (lambda: fastnorm.WheelsetContact(wheel_profile="/nonexistent.prw"), "/nonexistent.prw"),
