@@ -453,9 +453,6 @@ int fastnorm_wheelset_create(const fastnorm_wheelset_options* options, fastnorm_
     contact.distance.tolerance = options->distance_tolerance;
     contact.distance.node_spacing = options->distance_node_spacing;
     contact.distance_everywhere = options->distance_everywhere != 0;
-    FASTNORM_CHECK(options->warm_solve_iterations >= 0,
-                   fastnorm::describe("options.warm_solve_iterations must be >= 0 (0: none)",
-                                      options->warm_solve_iterations));
     contact.warm_solve_iterations = options->warm_solve_iterations;
     FASTNORM_CHECK(options->friction >= 0, fastnorm::describe("options.friction must be >= 0 (0: none)", options->friction));
     if (options->friction > 0) contact.creep.friction = options->friction;

@@ -468,8 +468,9 @@ std::unique_ptr<PyWheelset> make_wheelset(const std::string& solver, Eigen::Inde
                                           double gauge, double cant, const Material& material, bool stiffness,
                                           std::optional<int> max_iterations, std::optional<double> tolerance,
                                           std::optional<double> gap_tolerance, double distance_tolerance,
-                                          double distance_node_spacing, bool distance_everywhere, std::optional<double> friction,
-                                          const std::string& creep_method, int warm_solve_iterations) {
+                                          double distance_node_spacing, bool distance_everywhere,
+                                          std::optional<double> friction, const std::string& creep_method,
+                                          int warm_solve_iterations) {
   wr::WheelsetOnTrack setup;
   setup.wheel_profile = wheel_profile.value_or("");
   setup.rail_profile = rail_profile.value_or("");
@@ -859,7 +860,8 @@ void bind_wheelset(py::module_& m) {
                          "The contact model of one wheelset on its track (docs/wheel-rail.md §9), kept between "
                          "calls. Profiles: files (SIMPACK .prw/.prr or 'y z' in mm), None for S1002 and UIC60. "
                          "elements: across the largest patch. distance_tolerance_m: h interpolated along rows within it "
-                         "(0: exact at every element) between exact nodes distance_node_spacing_m apart; distance_everywhere: h on every element of a patch's grid "
+                         "(0: exact at every element) between exact nodes distance_node_spacing_m apart; "
+                         "distance_everywhere: h on every element of a patch's grid "
                          "(default: only where an element can interpenetrate, 1e-3 m elsewhere). friction: "
                          "Coulomb's mu of every patch, for creep forces when evaluate is given a Velocity; "
                          "creep_method: 'strip_theory' (default) or 'fastsim'. warm_solve_iterations: the most "
@@ -873,8 +875,8 @@ void bind_wheelset(py::module_& m) {
            "cant_rad"_a = wr::TrackLayout().cant, "material"_a = Material::steel(), "stiffness"_a = true,
            "max_iterations"_a = py::none(), "tolerance"_a = py::none(), "gap_tolerance"_a = py::none(),
            "distance_tolerance_m"_a = wr::DistanceAccuracy().tolerance,
-           "distance_node_spacing_m"_a = wr::DistanceAccuracy().node_spacing, "distance_everywhere"_a = false, "friction"_a = py::none(), "creep_method"_a = "strip_theory",
-           "warm_solve_iterations"_a = 0)
+           "distance_node_spacing_m"_a = wr::DistanceAccuracy().node_spacing, "distance_everywhere"_a = false,
+           "friction"_a = py::none(), "creep_method"_a = "strip_theory", "warm_solve_iterations"_a = 0)
       .def(
           "evaluate",
           [](PyWheelset& model, double y, double z, double roll, double yaw,

@@ -66,17 +66,22 @@ void check_wheel(const fastnorm_wheelset* model, int w, const wr::WheelContact& 
   }
 }
 
-/// The C++ model a C model of fastnorm_wheelset_options_default is, with `solver`,
-/// `elements`, `cant` and the creep options changed (S1002 on UIC60, steel: fastnorm_c.h).
+/// The C++ model of a C model of fastnorm_wheelset_options_default with `options` and
+/// `cant` (S1002 on UIC60, steel: fastnorm_c.h).
+wr::WheelsetContact<> cpp_model(const wr::WheelsetContactOptions& options, double cant = wr::TrackLayout().cant) {
+  wr::WheelsetOnTrack setup;
+  setup.cant = cant;
+  return wr::WheelsetContact<>(setup.track(), setup.wheelset(), options);
+}
+
+/// The same with `solver`, `elements`, `cant` and the creep options changed.
 wr::WheelsetContact<> cpp_model(const char* solver, int elements, double cant = wr::TrackLayout().cant,
                                 const wr::CreepOptions& creep = {}) {
   wr::WheelsetContactOptions options;
   options.solver = fastnorm::SolverSpec<double>::parse(solver);
   options.grid.elements = elements;
   options.creep = creep;
-  wr::WheelsetOnTrack setup;
-  setup.cant = cant;
-  return wr::WheelsetContact<>(setup.track(), setup.wheelset(), options);
+  return cpp_model(options, cant);
 }
 
 /// The model's rigid contact at (y, yaw), pressed `depth` (m) further.
@@ -278,8 +283,7 @@ TEST_CASE("The C API's solver tolerances are the C++ spec's, and refused where t
   options.solver.set_gap_tolerance(1e-2);
   options.grid.elements = 24;
   options.distance = {5e-10, 5e-3};
-  wr::WheelsetOnTrack setup;
-  wr::WheelsetContact<> model(setup.track(), setup.wheelset(), options);
+  auto model = cpp_model(options);
   const wr::WheelsetPose pose = pressed(model, 2e-3, 0, 0.1e-3);
   const fastnorm_pose c_pose = {pose.y, pose.z, pose.roll, pose.yaw};
   const auto& cpp = model.evaluate(pose);
