@@ -4,6 +4,7 @@
 
 #include <Eigen/Core>
 #include <cmath>
+#include <cstddef>
 #include <limits>
 #include <string>
 
@@ -105,8 +106,13 @@ struct Solution {
     normal_force = approach = residual = 0;
     iterations = 0;
     message.clear();
+    message.reserve(message_capacity);
     at_edge = false;
   }
+  /// Room a cleared answer's message keeps: every fixed message of the solvers fits (the
+  /// longest has 65 characters), so a recycled answer that meets a longer one than before
+  /// does not allocate for it in a time step (docs/performance.md §8).
+  static constexpr std::size_t message_capacity = 80;
   /// The pressures are a usable answer: converged, no contact, a resolved cycle, or the
   /// admissible iterate at which a caller's budget stopped the loop.
   bool ok() const {

@@ -117,6 +117,17 @@ TEST_CASE("With the last result recycled, a repeated sequence allocates nothing"
   }
 }
 
+TEST_CASE("A cleared answer has room for the solvers' longest fixed message", "[sequence][allocation]") {
+  // A recycled answer that first meets a longer ending than before (a cycle, a budget)
+  // would otherwise allocate for its message inside a time step.
+  fastnorm::Solution<> answer;
+  answer.clear(4);
+  const long allocations =
+      allocations_of([&] { answer.message = "stopped by the iteration budget; the next solve goes on from here"; });
+  CHECK(allocations == 0);
+  CHECK(answer.message.capacity() >= fastnorm::Solution<>::message_capacity);
+}
+
 TEST_CASE("A reduced solver's workspace keeps its storage when it moves to another grid's solver",
           "[sequence][allocation]") {
   // What a time-loop model does when a patch changes its grid size and takes a spare

@@ -58,7 +58,8 @@ struct GalerkinMemory {
     for (auto* list : {&old_index, &new_index}) list->reserve(segment_count);
     direct.reserve(segment_count);
     survivor_runs.reserve(segment_count);
-    for (auto* assemblies : {&path, &last_path, &spare}) assemblies->reserve(set_count);
+    for (auto* assemblies : {&path, &last_path}) assemblies->reserve(set_count);
+    spare.reserve(2 * set_count);  // both paths' assemblies come back to it (forget)
   }
 
   /// An assembly to fill: the spare one with the most storage, so that storage grows only
