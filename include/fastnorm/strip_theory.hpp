@@ -163,6 +163,10 @@ class StripTheory {
   void calibrate(const Grid<Scalar>& grid) {
     roots_.resize(strips_.size());
     for (std::size_t s = 0; s < strips_.size(); ++s) roots_[s] = root(static_cast<Eigen::Index>(s));
+    // A region holds at least one strip: room for as many regions as strips, so that a patch
+    // whose contact first splits into more regions does not allocate in a time step.
+    extents_.reserve(strips_.size());
+    compliances_.reserve(strips_.size());
     extents_.clear();
     for (std::size_t s = 0; s < strips_.size(); ++s) {
       Strip& strip = strips_[s];

@@ -18,6 +18,10 @@
 
 namespace fastnorm::wheelrail::detail {
 
+/// Room a new pool of spares gets when it is made: a few patches' worth, so that handing
+/// storage back to it later (a patch that changes grid size) does not allocate in a step.
+inline constexpr std::size_t spare_room = 4;
+
 /// `used` resized to `count` elements without freeing any element's storage: those beyond
 /// `count` move to `spare`, and a growing `used` takes them back from it before making new
 /// ones (so a patch count that drops and rises again allocates nothing).
@@ -69,6 +73,7 @@ class SolverCache {
       if (known.mx() == grid.mx() && known.my() == grid.my()) return s;
     }
     slots_.push_back({make(grid, spec, material), {}});
+    slots_.back().spare.reserve(spare_room);
     return slots_.size() - 1;
   }
 
@@ -150,7 +155,11 @@ class StorageByLength {
       if (spare.length == length) return spare;
     }
     spares_.push_back({length, {}, {}, {}});
-    return spares_.back();
+    Spares& made = spares_.back();
+    made.distances.reserve(spare_room);
+    made.solutions.reserve(spare_room);
+    made.tractions.reserve(spare_room);
+    return made;
   }
 
   /// `held`, of `held_length` elements, for one of `length` from the spares (if any: else it
