@@ -203,7 +203,7 @@ typedef struct fastnorm_wheelset_options {
                                  solves uncapped; 0 (default): none (docs/wheel-rail.md §9) */
   double tolerance;           /* of each patch solve, as in fastnorm_solver_options (CG only); 0: the default */
   double gap_tolerance;       /* of each patch solve, as in fastnorm_solver_options (not CG); 0: the default */
-  double distance_node_spacing; /* distance between the exact nodes of h along a row (m, default 3e-3, > 0;
+  double distance_node_spacing; /* distance between the exact nodes of h along a row (m, default 4e-3, > 0;
                                    docs/wheel-rail.md §4, item 7; docs/performance.md §8 its cost) */
 } fastnorm_wheelset_options;
 

@@ -37,13 +37,20 @@ inline constexpr double no_surface_gap = 1.0;
 /// profiles' curvatures: at most 4e-12 m (docs/wheel-rail.md §4, tested against bisection).
 inline constexpr double one_step_acceptance = 2e-7;
 
+/// A node of h by rows (interpolate_row) takes its slope dt/di from the last evaluation of
+/// Newton's method when the last step moved the root by at most this much (m), instead of
+/// evaluating once more at the root: the slope then differs from the root's by about
+/// |∂(G_i/G_t)/∂t|·step, and the interpolated h by about that times a quarter interval
+/// (docs/wheel-rail.md §4, item 7).
+inline constexpr double slope_reuse_step = 1e-8;
+
 /// How h is computed on a patch grid: exactly at every element (tolerance 0), or exactly at
 /// nodes about `node_spacing` apart along each row and by cubic Hermite interpolation
 /// between them wherever the interpolation error, estimated from the row's own fourth
 /// derivative, stays below `tolerance`; exactly elsewhere (docs/wheel-rail.md §4, item 7).
 struct DistanceAccuracy {
   double tolerance = 1e-10;     ///< bound on the interpolation error (m); 0: every element exactly
-  double node_spacing = 3e-3;   ///< distance between nodes along a row (m)
+  double node_spacing = 4e-3;   ///< distance between nodes along a row (m)
 
   /// @throws fastnorm::invalid_argument naming the offending field
   void validate() const {
@@ -102,15 +109,34 @@ class NormalLines {
     return {distance - rho.value, derivative(normal_in_wheelset_), derivative(step_in_wheelset_), false};
   }
 
+  /// The wheel's root t at element i from a close guess, and where it came cheaply the slope
+  /// dt/di there (interpolate_row's nodes).
+  struct RootNear {
+    double t = 0;
+    std::optional<double> slope;
+  };
+
   /// The wheel's root at element i from a close `guess`: Newton, accepted after one step of at
-  /// most one_step_acceptance or when it converges; empty if it does not (then bracketed_root).
-  std::optional<double> root_near(double i, double guess) const {
+  /// most one_step_acceptance or when it converges; empty if it does not (then
+  /// root_bracketed). With it the slope −G_i/G_t from the evaluation the last step started
+  /// at, if that step moved at most `slope_reuse_step` (the slope there is then within about
+  /// |∂(G_i/G_t)/∂t|·step of the root's, docs/wheel-rail.md §4, item 7).
+  std::optional<RootNear> root_near(double i, double guess) const {
     bool off_profile = false;
+    Excess last;
+    double last_t = guess;
     const auto root = fastnorm::wheelrail::detail::newton_root(
-        [&](double t) { return along_normal(i, t, off_profile); }, guess, NormalSearch::below, NormalSearch::above,
-        NormalSearch::tolerance, one_step_acceptance);
-    if (off_profile) return std::nullopt;
-    return root;
+        [&](double t) {
+          last = excess(i, t);
+          last_t = t;
+          off_profile = off_profile || last.off_profile;
+          return fastnorm::wheelrail::ProfileValue<double>{last.value, last.along_normal};
+        },
+        guess, NormalSearch::below, NormalSearch::above, NormalSearch::tolerance, one_step_acceptance);
+    if (off_profile || !root) return std::nullopt;
+    RootNear near{*root, std::nullopt};
+    if (std::abs(*root - last_t) <= slope_reuse_step) near.slope = -last.along_row / last.along_normal;
+    return near;
   }
 
   /// The wheel's root at element i anywhere in the search interval (`guess` inside it);
@@ -140,7 +166,7 @@ class NormalLines {
         const double guess = known == 3 ? 3 * roots[0] - 3 * roots[1] + roots[2]
                              : known == 2 ? 2 * roots[0] - roots[1]
                                           : roots[0];
-        root = root_near(at, guess);
+        if (const auto near = root_near(at, guess)) root = near->t;
       }
       if (!root) root = root_bracketed(at, known > 0 ? roots[0] : rail);
       if (!root) {
@@ -191,11 +217,13 @@ inline bool interpolate_row(const NormalLines& lines, Eigen::Index j, Eigen::Ind
   const Eigen::Index intervals = (last - first_column + span - 1) / span;
   std::array<Node, 4> ring;  // nodes q − 1 … q + 2 of interval q, at (q mod 4)
   auto node_position = [&](Eigen::Index q) { return static_cast<double>(std::min(first_column + q * span, last)); };
-  // Node q exact: Newton from the previous nodes' extrapolation, then one correction at the
-  // root, where the slope −G_i/G_t is taken.
+  // Node q exact: Newton from the previous nodes' extrapolation (the previous row's first
+  // node for the first: rows move smoothly too), bracketed where that fails; the slope
+  // −G_i/G_t from Newton's last evaluation where it lay close to the root, else from one
+  // correction at the root.
   auto compute_node = [&](Eigen::Index q) -> bool {
     const double i = node_position(q);
-    std::optional<double> root;
+    std::optional<NormalLines::RootNear> near;
     if (q > 0) {
       const Node& previous = ring[static_cast<std::size_t>((q - 1) % 4)];
       const double length = i - previous.i;
@@ -204,15 +232,23 @@ inline bool interpolate_row(const NormalLines& lines, Eigen::Index j, Eigen::Ind
         const Node& before = ring[static_cast<std::size_t>((q - 2) % 4)];
         guess += (previous.slope - before.slope) / (previous.i - before.i) * length * length / 2;
       }
-      root = lines.root_near(i, guess);
+      near = lines.root_near(i, guess);
     } else if (!std::isnan(first_root)) {
-      root = lines.root_near(i, first_root);  // the previous row's first node: rows move smoothly too
+      near = lines.root_near(i, first_root);
     }
-    if (!root) root = lines.root_bracketed(i, q > 0 ? ring[static_cast<std::size_t>((q - 1) % 4)].t : rail);
-    if (!root) return false;
-    const auto at = lines.excess(i, *root);
+    if (!near) {
+      const auto root = lines.root_bracketed(i, q > 0 ? ring[static_cast<std::size_t>((q - 1) % 4)].t : rail);
+      if (!root) return false;
+      near = NormalLines::RootNear{*root, std::nullopt};
+    }
+    Node& node = ring[static_cast<std::size_t>(q % 4)];
+    if (near->slope) {
+      node = {i, near->t, *near->slope};
+      return true;
+    }
+    const auto at = lines.excess(i, near->t);
     if (at.off_profile || at.along_normal == 0) return false;
-    ring[static_cast<std::size_t>(q % 4)] = {i, *root - at.value / at.along_normal, -at.along_row / at.along_normal};
+    node = {i, near->t - at.value / at.along_normal, -at.along_row / at.along_normal};
     return true;
   };
   // The interpolation error at an interval's midpoint, where a smooth t's error peaks: one
