@@ -109,33 +109,31 @@ class NormalLines {
     return {distance - rho.value, derivative(normal_in_wheelset_), derivative(step_in_wheelset_), false};
   }
 
-  /// The wheel's root t at element i from a close guess, and where it came cheaply the slope
-  /// dt/di there (interpolate_row's nodes).
+  /// The wheel's root t at element i found by Newton's method, with the evaluation its last
+  /// step started from and how far that step moved (interpolate_row's nodes take their slope
+  /// from it when the step was short).
   struct RootNear {
     double t = 0;
-    std::optional<double> slope;
+    Excess last;
+    double last_step = 0;
   };
 
   /// The wheel's root at element i from a close `guess`: Newton, accepted after one step of at
   /// most one_step_acceptance or when it converges; empty if it does not (then
-  /// root_bracketed). With it the slope −G_i/G_t from the evaluation the last step started
-  /// at, if that step moved at most `slope_reuse_step` (the slope there is then within about
-  /// |∂(G_i/G_t)/∂t|·step of the root's, docs/wheel-rail.md §4, item 7).
+  /// root_bracketed).
   std::optional<RootNear> root_near(double i, double guess) const {
     bool off_profile = false;
-    Excess last;
+    RootNear near;
     double last_t = guess;
     const auto root = fastnorm::wheelrail::detail::newton_root(
         [&](double t) {
-          last = excess(i, t);
           last_t = t;
-          off_profile = off_profile || last.off_profile;
-          return fastnorm::wheelrail::ProfileValue<double>{last.value, last.along_normal};
+          return along_normal(i, t, off_profile, near.last);
         },
         guess, NormalSearch::below, NormalSearch::above, NormalSearch::tolerance, one_step_acceptance);
     if (off_profile || !root) return std::nullopt;
-    RootNear near{*root, std::nullopt};
-    if (std::abs(*root - last_t) <= slope_reuse_step) near.slope = -last.along_row / last.along_normal;
+    near.t = *root;
+    near.last_step = std::abs(*root - last_t);
     return near;
   }
 
@@ -143,7 +141,8 @@ class NormalLines {
   /// empty where the line meets no wheel surface.
   std::optional<double> root_bracketed(double i, double guess) const {
     bool off_profile = false;
-    auto f = [&](double t) { return along_normal(i, t, off_profile); };
+    Excess evaluated;
+    auto f = [&](double t) { return along_normal(i, t, off_profile, evaluated); };
     const double at_low = f(NormalSearch::below).value, at_high = f(NormalSearch::above).value;
     if (off_profile || (at_low < 0) == (at_high < 0)) return std::nullopt;
     const double root = fastnorm::wheelrail::detail::bracketed_root(f, NormalSearch::below, at_low, NormalSearch::above,
@@ -183,8 +182,10 @@ class NormalLines {
   const Grid<double>& grid() const { return grid_; }
 
  private:
-  fastnorm::wheelrail::ProfileValue<double> along_normal(double i, double t, bool& off_profile) const {
-    const Excess at = excess(i, t);
+  /// G and G_t at (i, t), the whole evaluation into `at`; `off_profile` set if it lies
+  /// beyond the profile.
+  fastnorm::wheelrail::ProfileValue<double> along_normal(double i, double t, bool& off_profile, Excess& at) const {
+    at = excess(i, t);
     off_profile = off_profile || at.off_profile;
     return {at.value, at.along_normal};
   }
@@ -236,19 +237,18 @@ inline bool interpolate_row(const NormalLines& lines, Eigen::Index j, Eigen::Ind
     } else if (!std::isnan(first_root)) {
       near = lines.root_near(i, first_root);
     }
-    if (!near) {
-      const auto root = lines.root_bracketed(i, q > 0 ? ring[static_cast<std::size_t>((q - 1) % 4)].t : rail);
-      if (!root) return false;
-      near = NormalLines::RootNear{*root, std::nullopt};
-    }
     Node& node = ring[static_cast<std::size_t>(q % 4)];
-    if (near->slope) {
-      node = {i, near->t, *near->slope};
+    if (near && near->last_step <= slope_reuse_step) {
+      node = {i, near->t, -near->last.along_row / near->last.along_normal};
       return true;
     }
-    const auto at = lines.excess(i, near->t);
+    std::optional<double> root;
+    if (near) root = near->t;
+    if (!root) root = lines.root_bracketed(i, q > 0 ? ring[static_cast<std::size_t>((q - 1) % 4)].t : rail);
+    if (!root) return false;
+    const auto at = lines.excess(i, *root);
     if (at.off_profile || at.along_normal == 0) return false;
-    node = {i, near->t - at.value / at.along_normal, -at.along_row / at.along_normal};
+    node = {i, *root - at.value / at.along_normal, -at.along_row / at.along_normal};
     return true;
   };
   // The interpolation error at an interval's midpoint, where a smooth t's error peaks: one
