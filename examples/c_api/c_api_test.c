@@ -452,7 +452,7 @@ static void contact_table_lookup(const char* scratch) {
   EXPECT(file != NULL);
   if (!file) return;
   fwrite("FNTABLE\0", 1, 8, file);
-  write_u32(file, 1);                                          /* version */
+  write_u32(file, 2);                                          /* version */
   write_u32(file, 1), write_u32(file, 3), write_u32(file, 2);  /* pairs, shifts, yaws */
   write_u32(file, 1), write_u32(file, 2);                      /* loads, outputs */
   fwrite(shifts, sizeof(double), 3, file);
@@ -471,6 +471,11 @@ static void contact_table_lookup(const char* scratch) {
       const int32_t code = (i == 2 && j == 1) ? 3 : 1;
       fwrite(&code, sizeof code, 1, file);
     }
+  write_u32(file, 1); /* measured derivatives along y follow: the data's own, 2e5 and 1 */
+  for (int c = 0; c < 6; ++c) {
+    const double derivatives[2] = {2e5, 1.0};
+    fwrite(derivatives, sizeof(double), 2, file);
+  }
   fclose(file);
 
   fastnorm_table* table = NULL;

@@ -924,7 +924,8 @@ std::vector<double> axis_of(const InputArray& array, const char* name) {
 fastnorm::ContactTable make_table(const InputArray& lateral_shift_m, const InputArray& yaw_rad,
                                   const InputArray& load_n, std::vector<std::string> pair_names,
                                   std::vector<std::string> output_names, std::vector<std::string> output_units,
-                                  const InputArray& values, const Int32Array& topology) {
+                                  const InputArray& values, const Int32Array& topology,
+                                  const std::optional<InputArray>& measured_shift_derivatives) {
   fastnorm::TableAxes axes{axis_of(lateral_shift_m, "lateral_shift_m"), axis_of(yaw_rad, "yaw_rad"),
                            axis_of(load_n, "load_n")};
   const std::vector<py::ssize_t> cases{static_cast<py::ssize_t>(pair_names.size()),
@@ -948,9 +949,16 @@ fastnorm::ContactTable make_table(const InputArray& lateral_shift_m, const Input
                  "values must have shape (pairs, loads, yaws, shifts, outputs) = " + shape_text(value_shape));
   FASTNORM_CHECK(has_shape(topology, cases),
                  "topology must have shape (pairs, loads, yaws, shifts) = " + shape_text(cases));
+  std::vector<double> measured;
+  if (measured_shift_derivatives) {
+    FASTNORM_CHECK(has_shape(*measured_shift_derivatives, value_shape),
+                   "measured_shift_derivatives must have the shape of values " + shape_text(value_shape));
+    measured.assign(measured_shift_derivatives->data(),
+                    measured_shift_derivatives->data() + measured_shift_derivatives->size());
+  }
   return fastnorm::ContactTable(std::move(axes), std::move(pair_names), std::move(output_names),
                                 std::move(output_units), {values.data(), values.data() + values.size()},
-                                {topology.data(), topology.data() + topology.size()});
+                                {topology.data(), topology.data() + topology.size()}, std::move(measured));
 }
 
 fastnorm::TableInterpolation interpolation_of(const std::string& name) {
@@ -965,9 +973,11 @@ void bind_tables(py::module_& m) {
       "A contact table over (pair, load, yaw, lateral shift) with named outputs, looked up by "
       "multilinear or monotone cubic (PCHIP) interpolation with a topology guard (docs/tables.md §4). "
       "values: shape (pairs, loads, yaws, shifts, outputs); topology: (pairs, loads, yaws, shifts), "
-      "a code >= 0 per solved case (cases interpolate together only when equal), < 0 for a failed one.")
+      "a code >= 0 per solved case (cases interpolate together only when equal), < 0 for a failed one; "
+      "measured_shift_derivatives: None, or d(values)/dy (per m) of values' shape measured when the table was "
+      "built, NaN where none: PCHIP takes them at their nodes along y, limited to keep monotone data monotone.")
       .def(py::init(&make_table), py::kw_only(), "lateral_shift_m"_a, "yaw_rad"_a, "load_n"_a, "pair_names"_a,
-           "output_names"_a, "output_units"_a, "values"_a, "topology"_a)
+           "output_names"_a, "output_units"_a, "values"_a, "topology"_a, "measured_shift_derivatives"_a = py::none())
       .def_static("read", &fastnorm::read_contact_table, "path"_a, "Reads the file fastnorm-table export writes.")
       .def("write", [](const fastnorm::ContactTable& table, const std::string& path) {
             fastnorm::write_contact_table(table, path);

@@ -63,17 +63,26 @@ class ContactTable {
  public:
   static constexpr std::size_t axis_count = 3;
 
+  /// `measured_shift_derivatives`: empty, or dv/dy of every case and output in the layout of
+  /// `values` (the output's unit per metre), measured when the table was built, e.g. by the
+  /// central differences of equilibria at y ± Δ (docs/tables.md §4); NaN where none was
+  /// measured. A finite one replaces PCHIP's estimate at its node along y, limited so that
+  /// monotone data stay monotone: zero where the secants to the neighbours of the same code
+  /// differ in sign from each other or from it, else at most three times the smaller secant
+  /// (Fritsch and Carlson's sufficient condition).
   /// @throws fastnorm::invalid_argument naming the argument: an empty or non-increasing axis,
   /// non-finite nodes, names and units of different lengths, sizes that do not match, a
-  /// non-finite value of a solved case
+  /// non-finite value of a solved case, an infinite measured derivative
   ContactTable(TableAxes axes, std::vector<std::string> pair_names, std::vector<std::string> output_names,
-               std::vector<std::string> output_units, std::vector<double> values, std::vector<std::int32_t> topology)
+               std::vector<std::string> output_units, std::vector<double> values, std::vector<std::int32_t> topology,
+               std::vector<double> measured_shift_derivatives = {})
       : axes_(std::move(axes)),
         pair_names_(std::move(pair_names)),
         output_names_(std::move(output_names)),
         output_units_(std::move(output_units)),
         values_(std::move(values)),
-        topology_(std::move(topology)) {
+        topology_(std::move(topology)),
+        measured_shift_derivatives_(std::move(measured_shift_derivatives)) {
     check_axis(axes_.lateral_shift_m, "axes.lateral_shift_m");
     check_axis(axes_.yaw_rad, "axes.yaw_rad");
     check_axis(axes_.load_n, "axes.load_n");
@@ -99,6 +108,14 @@ class ContactTable {
                                     " must be finite",
                                 values_[c * outputs() + o]));
     }
+    FASTNORM_CHECK(measured_shift_derivatives_.empty() || measured_shift_derivatives_.size() == values_.size(),
+                   describe("measured_shift_derivatives must be empty or hold one number per value (" +
+                                std::to_string(values_.size()) + ")",
+                            measured_shift_derivatives_.size()));
+    for (std::size_t k = 0; k < measured_shift_derivatives_.size(); ++k)
+      FASTNORM_CHECK(!std::isinf(measured_shift_derivatives_[k]),
+                     describe("measured_shift_derivatives[" + std::to_string(k) + "] must be finite or NaN",
+                              measured_shift_derivatives_[k]));
     differentiate_along_y();
   }
 
@@ -108,6 +125,8 @@ class ContactTable {
   const std::vector<std::string>& output_units() const { return output_units_; }
   const std::vector<double>& values() const { return values_; }
   const std::vector<std::int32_t>& topology() const { return topology_; }
+  /// As given to the constructor (empty: none).
+  const std::vector<double>& measured_shift_derivatives() const { return measured_shift_derivatives_; }
   std::size_t pairs() const { return pair_names_.size(); }
   std::size_t outputs() const { return output_names_.size(); }
 
@@ -279,11 +298,12 @@ class ContactTable {
     return true;
   }
 
-  /// The PCHIP derivative along y of every solved case and output, in the layout of values_:
-  /// from the nodes of its own line (yaw, load and pair fixed) within one of it on each side
-  /// that have its code, and two on one side where the other is missing (the one-sided
-  /// estimate). Done once, so that a lookup's 16 lines along y are each a cubic Hermite form
-  /// of two values and two derivatives (docs/tables.md §4).
+  /// The derivative along y of every solved case and output, in the layout of values_:
+  /// PCHIP's from the nodes of its own line (yaw, load and pair fixed) within one of it on
+  /// each side that have its code, and two on one side where the other is missing (the
+  /// one-sided estimate); or the measured one, limited (see the constructor). Done once, so
+  /// that a lookup's 16 lines along y are each a cubic Hermite form of two values and two
+  /// derivatives (docs/tables.md §4).
   void differentiate_along_y() {
     const std::vector<double>& nodes = axes_.lateral_shift_m;
     const std::size_t shifts = nodes.size(), n = outputs();
@@ -303,12 +323,31 @@ class ContactTable {
         if (!right && first > 0 && same(i, first - 1)) --first;       // one-sided from below
         const PchipStencil stencil(nodes, {first, last});
         for (std::size_t o = 0; o < n; ++o) {
+          const std::size_t at = (line + i) * n + o;
+          if (!measured_shift_derivatives_.empty() && !std::isnan(measured_shift_derivatives_[at])) {
+            const auto secant = [&](std::size_t a, std::size_t b) {
+              return (values_[(line + b) * n + o] - values_[(line + a) * n + o]) / (nodes[b] - nodes[a]);
+            };
+            shift_derivatives_[at] = limited(measured_shift_derivatives_[at], left ? secant(i - 1, i) : secant(i, i + 1),
+                                             right ? secant(i, i + 1) : secant(i - 1, i));
+            continue;
+          }
           std::array<double, 4> run{};
           for (std::size_t s = 0; s < stencil.count; ++s) run[s] = values_[(line + first + s) * n + o];
-          shift_derivatives_[(line + i) * n + o] = stencil.derivative(stencil.slopes(run), i - first);
+          shift_derivatives_[at] = stencil.derivative(stencil.slopes(run), i - first);
         }
       }
     }
+  }
+
+  /// A measured derivative kept within Fritsch and Carlson's square: zero unless it and the
+  /// secants before and after the node (the same one twice at an end) share a sign, else at
+  /// most three times the smaller secant, so that the Hermite cubic of a monotone cell is
+  /// monotone.
+  static double limited(double derivative, double before, double after) {
+    if (before * after <= 0 || derivative * before <= 0) return 0;
+    const double bound = 3 * std::min(std::abs(before), std::abs(after));
+    return std::abs(derivative) > bound ? std::copysign(bound, derivative) : derivative;
   }
 
   /// The nodes of a PCHIP stencil along one axis (2 to 4 of them) and what depends on them
@@ -423,7 +462,8 @@ class ContactTable {
   std::vector<std::string> output_units_;
   std::vector<double> values_;
   std::vector<std::int32_t> topology_;
-  std::vector<double> shift_derivatives_;  // PCHIP's dv/dy at every case and output (values_' layout)
+  std::vector<double> measured_shift_derivatives_;  // as given: empty, or values_' layout with NaN where none
+  std::vector<double> shift_derivatives_;  // dv/dy at every case and output (values_' layout), PCHIP's or measured
 };
 
 }  // namespace fastnorm

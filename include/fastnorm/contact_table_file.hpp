@@ -5,14 +5,17 @@
 /// Little-endian, in order:
 ///
 ///     "FNTABLE\0"                          8 bytes
-///     version = 1                          uint32
+///     version = 2                          uint32
 ///     pairs, shifts, yaws, loads, outputs  uint32 × 5
 ///     lateral_shift_m, yaw_rad, load_n     float64 × shifts, yaws, loads
 ///     pair names, output names, units      each: uint32 length, then that many UTF-8 bytes
 ///     values                               float64 × pairs·loads·yaws·shifts·outputs (ContactTable's layout)
 ///     topology                             int32 × pairs·loads·yaws·shifts
+///     measured                             uint32: 1 if measured derivatives follow, else 0
+///     measured_shift_derivatives           float64 × (values' count) if measured
 ///
-/// and nothing after. Reading checks all of it and names what is wrong.
+/// and nothing after. Version 1, without the last two, is read too. Reading checks all of it
+/// and names what is wrong.
 
 #include <cstdint>
 #include <cstring>
@@ -29,7 +32,7 @@ namespace fastnorm {
 namespace detail {
 
 constexpr char contact_table_magic[8] = {'F', 'N', 'T', 'A', 'B', 'L', 'E', '\0'};
-constexpr std::uint32_t contact_table_version = 1;
+constexpr std::uint32_t contact_table_version = 2;
 
 inline bool host_is_little_endian() {
   const std::uint32_t one = 1;
@@ -74,7 +77,7 @@ class TableFileReader {
 
   void expect_end() {
     FASTNORM_CHECK(in_.peek() == std::char_traits<char>::eof(),
-                   "contact table '" + path_ + "' has bytes after its topology");
+                   "contact table '" + path_ + "' has bytes after its last part");
   }
 
  private:
@@ -108,8 +111,8 @@ inline ContactTable read_contact_table(const std::string& path) {
   FASTNORM_CHECK(std::memcmp(magic, detail::contact_table_magic, sizeof magic) == 0,
                  "'" + path + "' is not a fastnorm contact table (no FNTABLE header)");
   const std::uint32_t version = file.count("version");
-  FASTNORM_CHECK(version == detail::contact_table_version,
-                 describe("contact table '" + path + "' is of another format version than 1", version));
+  FASTNORM_CHECK(version == 1 || version == detail::contact_table_version,
+                 describe("contact table '" + path + "' is of another format version than 1 or 2", version));
   const std::uint32_t pairs = file.count("pair count");
   const std::uint32_t shifts = file.count("shift count");
   const std::uint32_t yaws = file.count("yaw count");
@@ -128,10 +131,17 @@ inline ContactTable read_contact_table(const std::string& path) {
   const std::size_t cases = std::size_t(pairs) * shifts * yaws * loads;
   std::vector<double> values = file.numbers<double>(cases * outputs, "values");
   std::vector<std::int32_t> topology = file.numbers<std::int32_t>(cases, "topology");
+  std::vector<double> measured;
+  if (version >= 2) {
+    const std::uint32_t has_measured = file.count("measured-derivatives flag");
+    FASTNORM_CHECK(has_measured <= 1,
+                   describe("contact table '" + path + "': the measured-derivatives flag must be 0 or 1", has_measured));
+    if (has_measured == 1) measured = file.numbers<double>(cases * outputs, "measured derivatives");
+  }
   file.expect_end();
   try {
     return ContactTable(std::move(axes), std::move(pair_names), std::move(output_names), std::move(output_units),
-                        std::move(values), std::move(topology));
+                        std::move(values), std::move(topology), std::move(measured));
   } catch (const invalid_argument& error) {  // the same message, with the file named after "fastnorm: "
     throw invalid_argument("fastnorm: contact table '" + path + "': " + std::string(error.what()).substr(10));
   }
@@ -159,6 +169,9 @@ inline void write_contact_table(const ContactTable& table, const std::string& pa
   detail::write_texts(out, table.output_units());
   detail::write_numbers(out, table.values());
   detail::write_numbers(out, table.topology());
+  const std::vector<double>& measured = table.measured_shift_derivatives();
+  detail::write_numbers(out, std::vector<std::uint32_t>{measured.empty() ? 0u : 1u});
+  detail::write_numbers(out, measured);
   out.flush();
   FASTNORM_CHECK(out.good(), "writing contact table '" + path + "' failed");
 }

@@ -38,20 +38,26 @@ std::vector<double> graded_axis(double first, double last, int count, double gro
 /// Topology code of a case by its y index i and yaw index j.
 using Code = std::function<std::int32_t(std::size_t i, std::size_t j)>;
 
-/// One pair; outputs field(y, yaw, load) and 2·field + 1; every case of topology `code(i, j)`.
+/// One pair; outputs field(y, yaw, load) and 2·field + 1; every case of topology `code(i, j)`;
+/// with `derivative`, its values at the nodes as the measured ∂/∂y of both outputs.
 ContactTable table_of(const TableAxes& axes, const Field& field,
-                      const Code& code = [](std::size_t, std::size_t) { return 0; }) {
-  std::vector<double> values;
+                      const Code& code = [](std::size_t, std::size_t) { return 0; }, const Field& derivative = {}) {
+  std::vector<double> values, measured;
   std::vector<std::int32_t> topology;
   for (double load : axes.load_n)
     for (std::size_t j = 0; j < axes.yaw_rad.size(); ++j)
       for (std::size_t i = 0; i < axes.lateral_shift_m.size(); ++i) {
-        const double f = field(axes.lateral_shift_m[i], axes.yaw_rad[j], load);
+        const double y = axes.lateral_shift_m[i], yaw = axes.yaw_rad[j];
+        const double f = field(y, yaw, load);
         values.push_back(f);
         values.push_back(2 * f + 1);
         topology.push_back(code(i, j));
+        if (derivative) {
+          measured.push_back(derivative(y, yaw, load));
+          measured.push_back(2 * derivative(y, yaw, load));
+        }
       }
-  return ContactTable(axes, {"S1002/UIC60"}, {"fn", "twice"}, {"N", "N"}, values, topology);
+  return ContactTable(axes, {"S1002/UIC60"}, {"fn", "twice"}, {"N", "N"}, values, topology, measured);
 }
 
 TableAxes example_axes() {
@@ -144,6 +150,64 @@ TEST_CASE("PCHIP keeps monotone data monotone and is C1 across nodes", "[table]"
   const double left = (at(node) - at(node - step_size)) / step_size;
   const double right = (at(node + step_size) - at(node)) / step_size;
   CHECK(left == Approx(right).epsilon(1e-4));
+}
+
+TEST_CASE("Measured derivatives along y: exact for cubics in y, NaN falls back to PCHIP, monotone kept", "[table]") {
+  // Cubic in y, linear in yaw and load (which PCHIP reproduces), increasing in y.
+  const Field cubic = [](double y, double yaw, double load) { return 1 + 100 * y + 1e6 * y * y * y + 3 * yaw + 1e-5 * load; };
+  const Field slope = [](double y, double, double) { return 100 + 3e6 * y * y; };
+  const TableAxes axes = example_axes();
+  const auto always = [](std::size_t, std::size_t) { return std::int32_t(0); };
+  const ContactTable measured = table_of(axes, cubic, always, slope);
+  const ContactTable estimated = table_of(axes, cubic);
+  double estimated_error = 0;
+  for (const auto& point : inner_points(axes, 300)) {
+    const double exact = cubic(point[0], point[1], point[2]);
+    const auto got = lookup(measured, point[0], point[1], point[2], TableInterpolation::pchip);
+    CHECK(got[0] == Approx(exact).epsilon(1e-12));
+    CHECK(got[1] == Approx(2 * exact + 1).epsilon(1e-12));
+    estimated_error = std::max(
+        estimated_error, std::abs(lookup(estimated, point[0], point[1], point[2], TableInterpolation::pchip)[0] - exact));
+  }
+  CHECK(estimated_error > 1e-6);  // PCHIP's own slopes are not exact for the cubic
+  // NaN: nothing measured there, PCHIP's estimate, bit for bit; the file keeps the measured ones.
+  const ContactTable unmeasured = table_of(axes, cubic, always, [](double, double, double) { return std::nan(""); });
+  const std::string path = "contact_table_measured_test.fntable";
+  fastnorm::write_contact_table(measured, path);
+  const ContactTable read = fastnorm::read_contact_table(path);
+  std::remove(path.c_str());
+  for (const auto& point : inner_points(axes, 50)) {
+    CHECK(lookup(unmeasured, point[0], point[1], point[2], TableInterpolation::pchip)[0] ==
+          lookup(estimated, point[0], point[1], point[2], TableInterpolation::pchip)[0]);
+    CHECK(lookup(read, point[0], point[1], point[2], TableInterpolation::pchip)[0] ==
+          lookup(measured, point[0], point[1], point[2], TableInterpolation::pchip)[0]);
+  }
+  // Wrong-signed or far too steep measurements are limited: the smoothed step stays within its
+  // cells' values and monotone.
+  const Field step = [](double y, double, double) { return y < 1e-3 ? 1.0 : (y < 2e-3 ? 1.0 + 9 * (y - 1e-3) / 1e-3 : 10.0); };
+  const TableAxes line{graded_axis(-6e-3, 6e-3, 13, 1.0), {0.0}, {1e5}};
+  for (const double wild : {-5e3, 5e5}) {
+    const ContactTable limited = table_of(line, step, always, [wild](double, double, double) { return wild; });
+    double previous = -std::numeric_limits<double>::infinity();
+    for (int n = 0; n <= 2000; ++n) {
+      const double value = lookup(limited, -6e-3 + 12e-3 * n / 2000, 0.0, 1e5, TableInterpolation::pchip)[0];
+      CHECK(value >= previous);
+      CHECK(value >= 1.0);
+      CHECK(value <= 10.0);
+      previous = value;
+    }
+  }
+  // Sizes and values it refuses.
+  const std::vector<double> values{1, 2, 3, 4};
+  const std::vector<std::int32_t> codes{0, 0};
+  const TableAxes two{{0.0, 1e-3}, {0.0}, {1e5}};
+  auto make = [&](std::vector<double> derivatives) {
+    return ContactTable(two, {"p"}, {"fn", "pmax"}, {"N", "Pa"}, values, codes, std::move(derivatives));
+  };
+  CHECK_NOTHROW(make({}));
+  CHECK_NOTHROW(make({1, std::nan(""), 3, 4}));
+  CHECK_THROWS_WITH(make({1, 2, 3}), Contains("measured_shift_derivatives must be empty or hold one number per value"));
+  CHECK_THROWS_WITH(make({1, 2, std::numeric_limits<double>::infinity(), 4}), Contains("measured_shift_derivatives[2]"));
 }
 
 TEST_CASE("The topology guard: no blend across a change of patch count", "[table]") {
@@ -284,13 +348,24 @@ TEST_CASE("The export file round-trips bit for bit and refuses what it is not", 
   write_bytes(bytes.substr(0, bytes.size() - 5));
   CHECK_THROWS_WITH(fastnorm::read_contact_table(path), Contains("ends before its topology"));
   write_bytes(bytes + "x");
-  CHECK_THROWS_WITH(fastnorm::read_contact_table(path), Contains("bytes after its topology"));
+  CHECK_THROWS_WITH(fastnorm::read_contact_table(path), Contains("bytes after its last part"));
   write_bytes("NOTATABLE" + bytes.substr(9));
   CHECK_THROWS_WITH(fastnorm::read_contact_table(path), Contains("not a fastnorm contact table"));
   std::string other_version = bytes;
-  other_version[8] = 2;
+  other_version[8] = 3;
   write_bytes(other_version);
   CHECK_THROWS_WITH(fastnorm::read_contact_table(path), Contains("format version"));
+  std::string bad_flag = bytes;
+  bad_flag[bytes.size() - 4] = 2;  // no measured derivatives: the flag is the last 4 bytes
+  write_bytes(bad_flag);
+  CHECK_THROWS_WITH(fastnorm::read_contact_table(path), Contains("measured-derivatives flag"));
+  // Version 1, the same without the flag, is still read.
+  std::string version_one = bytes.substr(0, bytes.size() - 4);
+  version_one[8] = 1;
+  write_bytes(version_one);
+  const ContactTable old = fastnorm::read_contact_table(path);
+  CHECK(old.topology() == table.topology());
+  CHECK(old.measured_shift_derivatives().empty());
   std::remove(path.c_str());
   CHECK_THROWS_WITH(fastnorm::read_contact_table(path), Contains("cannot open"));
 }

@@ -253,3 +253,52 @@ def test_progress_is_shown_as_plain_lines_off_a_terminal(tmp_path, capsys):
     printed = capsys.readouterr().err
     assert "chunks 1/2  cases 4/6" in printed and "chunks 2/2  cases 6/6" in printed
     assert "\r" not in printed  # no bar when stderr is not a terminal
+
+
+def test_measured_shift_derivatives_are_central_differences_that_the_table_takes(tmp_path):
+    # docs/tables.md §1: with shift_derivative_step the build solves y ± step beside each case
+    # and stores d/dy; the table's cubic along y then takes them at its nodes.
+    step = 3e-6
+    spec = dict(SMALL, lateral_shift_m=[4.0e-3, 4.25e-3, 4.5e-3], yaw_rad=[4e-3], shift_derivative_step=step)
+    store = str(tmp_path / "measured")
+    tables.build(spec, store, executor="serial", progress=False)
+    canonical, arrays = tables.load_arrays(store)
+    assert canonical["shift_derivative_step"] == step
+    assert "shift_derivative_step" not in tables.canonical_spec(SMALL)  # older stores' specs unchanged
+    force = [name for name, *_ in tables.PATCH_OUTPUTS].index("normal_force")
+    right = tables.WHEELS.index("right")
+    model = fastnorm.WheelsetContact(solver="cg", elements=SMALL["elements"])
+
+    def direct(y):
+        model.reset()
+        return model.equilibrium(load_n=2e5, lateral_shift_m=y, yaw_rad=4e-3).wheels[right].patches[0].normal_force_n
+
+    nodes = spec["lateral_shift_m"]
+    measured = arrays["patch_derivatives"][0, 0, 0, :, right, 0, force]
+    for i, y in enumerate(nodes):
+        assert measured[i] == pytest.approx((direct(y + step) - direct(y - step)) / (2 * step), rel=1e-12)
+    values = arrays["patch_values"][0, 0, 0, :, right, 0, force]
+    assert (np.diff(values) > 0).all()
+
+    # Between two nodes the lookup is the cubic Hermite form of their values and measured slopes
+    # (within Fritsch and Carlson's limit here: no clipping).
+    secants = np.diff(values) / np.diff(nodes)
+    assert (measured[:2] > 0).all() and (measured[:2] < 3 * secants.min()).all()
+    table = tables.contact_table(store)
+    column = table.output_names.index("normal_force_right0")
+    width = nodes[1] - nodes[0]
+    status, outputs = table.lookup(0, 0.5 * (nodes[0] + nodes[1]), 4e-3, 2e5)
+    assert status == "ok"
+    hermite = 0.5 * (values[0] + values[1]) + width / 8 * (measured[0] - measured[1])
+    assert outputs[column] == pytest.approx(hermite, rel=1e-12)
+
+    binary = tmp_path / "measured.fntable"
+    tables.export(store, str(binary))
+    assert fastnorm.ContactTable.read(str(binary)).lookup(0, 0.5 * (nodes[0] + nodes[1]), 4e-3, 2e5)[1][column] == \
+        outputs[column]
+    netcdf = tmp_path / "measured.nc"
+    tables.export(store, str(netcdf))
+    import netCDF4
+    with netCDF4.Dataset(netcdf) as read:
+        assert read["normal_force_dy"].units == "N m-1"
+        assert read["normal_force_dy"].dimensions == ("pair", "load", "yaw", "y", "wheel", "patch")

@@ -79,11 +79,16 @@ def _flat_outputs():
     return flat
 
 
-def _empty_arrays(cases):
-    """The arrays of `cases` cases as a shard holds them: not computed (status 0, NaN)."""
-    return {"status": np.zeros(cases, np.int8), "patch_count": np.zeros((cases, len(WHEELS)), np.int8),
-            "case_values": np.full((cases, len(CASE_OUTPUTS)), np.nan),
-            "patch_values": np.full((cases, len(WHEELS), PATCHES, len(PATCH_OUTPUTS)), np.nan)}
+def _empty_arrays(cases, derivatives=False):
+    """The arrays of `cases` cases as a shard holds them: not computed (status 0, NaN); with
+    `derivatives`, also the outputs' measured d/dy (the spec's shift_derivative_step)."""
+    arrays = {"status": np.zeros(cases, np.int8), "patch_count": np.zeros((cases, len(WHEELS)), np.int8),
+              "case_values": np.full((cases, len(CASE_OUTPUTS)), np.nan),
+              "patch_values": np.full((cases, len(WHEELS), PATCHES, len(PATCH_OUTPUTS)), np.nan)}
+    if derivatives:
+        arrays["case_derivatives"] = np.full_like(arrays["case_values"], np.nan)
+        arrays["patch_derivatives"] = np.full_like(arrays["patch_values"], np.nan)
+    return arrays
 
 
 def _extent(patch, axis, size):
@@ -162,7 +167,13 @@ def canonical_spec(spec, base="."):
     chunk_size = int(spec.get("chunk_size", 10))
     if elements < 4 or chunk_size < 1:
         raise ValueError("spec: elements must be >= 4 and chunk_size >= 1")
-    return {
+    optional = {}
+    if spec.get("shift_derivative_step") is not None:
+        step = float(spec["shift_derivative_step"])
+        if not (np.isfinite(step) and 0 < step < 1e-3):
+            raise ValueError(f"spec: shift_derivative_step must be a step in m between 0 and 1e-3 (got {step})")
+        optional["shift_derivative_step"] = step  # only when set: older stores' specs stay equal
+    return {**optional,
         "fastnorm_version": __version__,
         "kind": kind,
         "lateral_shift_m": _axis_nodes(spec.get("lateral_shift_m"), "lateral_shift_m"),
@@ -249,19 +260,40 @@ def compute_chunk(text, pair, number):
     total = int(np.prod(shape))
     first = number * canonical["chunk_size"]
     cases = range(first, min(first + canonical["chunk_size"], total))
-    arrays = _empty_arrays(len(cases))
+    step = canonical.get("shift_derivative_step")
+    arrays = _empty_arrays(len(cases), derivatives=step is not None)
+    model = _model(canonical, digest, pair)
     for row, case in enumerate(cases):
         load, yaw, shift = np.unravel_index(case, shape)
-        model = _model(canonical, digest, pair)
-        model.reset()  # no history: the same case gives the same numbers in any chunk order
-        found = model.equilibrium(load_n=canonical["load_n"][load], lateral_shift_m=canonical["lateral_shift_m"][shift],
-                                  yaw_rad=canonical["yaw_rad"][yaw])
-        arrays["status"][row] = STATUS_CODES[found.status]
-        arrays["case_values"][row] = [value(found) for _, _, _, value in CASE_OUTPUTS]
-        for w, wheel in enumerate(found.wheels):
-            arrays["patch_count"][row, w] = len(wheel.patches)
-            for p, patch in enumerate(wheel.patches[:PATCHES]):
-                arrays["patch_values"][row, w, p] = [value(patch) for _, _, _, value in PATCH_OUTPUTS]
+        at = (canonical["load_n"][load], canonical["yaw_rad"][yaw], canonical["lateral_shift_m"][shift])
+        found = _solve_case(model, *at)
+        for name, array in found.items():
+            arrays[name][row] = array
+        if step is None:
+            continue
+        # d/dy by central differences (docs/tables.md §1), where both neighbours converged with
+        # the case's patches; NaN elsewhere, and the table estimates it (PCHIP).
+        below, above = (_solve_case(model, at[0], at[1], at[2] + sign * step) for sign in (-1, 1))
+        converged = STATUS_CODES["converged"]
+        if all(c["status"] == converged and np.array_equal(c["patch_count"], found["patch_count"])
+               for c in (found, below, above)):
+            for name in ("case_values", "patch_values"):
+                arrays[name.replace("values", "derivatives")][row] = (above[name] - below[name]) / (2 * step)
+    return arrays
+
+
+def _solve_case(model, load, yaw, shift):
+    """One case's arrays (as _empty_arrays' rows) from an equilibrium of a reset model: no
+    history, so that the same case gives the same numbers in any chunk order."""
+    model.reset()
+    found = model.equilibrium(load_n=load, lateral_shift_m=shift, yaw_rad=yaw)
+    arrays = {name: array[0] for name, array in _empty_arrays(1).items()}
+    arrays["status"] = STATUS_CODES[found.status]
+    arrays["case_values"][:] = [value(found) for _, _, _, value in CASE_OUTPUTS]
+    for w, wheel in enumerate(found.wheels):
+        arrays["patch_count"][w] = len(wheel.patches)
+        for p, patch in enumerate(wheel.patches[:PATCHES]):
+            arrays["patch_values"][w, p] = [value(patch) for _, _, _, value in PATCH_OUTPUTS]
     return arrays
 
 
@@ -623,7 +655,7 @@ def load_arrays(store):
     shape = case_shape(canonical)
     total = int(np.prod(shape))
     per_pair = int(np.prod(shape[1:]))
-    arrays = _empty_arrays(total)
+    arrays = _empty_arrays(total, derivatives="shift_derivative_step" in canonical)
     arrays["done"] = np.zeros(total, bool)
     size = canonical["chunk_size"]
     for chunk in all_chunks(canonical):
@@ -657,6 +689,15 @@ def open(store):  # noqa: A001 - fastnorm.tables.open, as xarray.open_dataset
         data[name] = (dims, arrays["case_values"][..., k], {"long_name": long_name, "units": unit})
     for k, (name, unit, long_name, _) in enumerate(PATCH_OUTPUTS):
         data[name] = (patch_dims, arrays["patch_values"][..., k], {"long_name": long_name, "units": unit})
+    if "case_derivatives" in arrays:
+        derivative = " measured along y by central differences (NaN: not measured)"
+        per_metre = lambda unit: "m-1" if unit == "1" else f"{unit} m-1"  # noqa: E731
+        for k, (name, unit, long_name, _) in enumerate(CASE_OUTPUTS):
+            data[f"{name}_dy"] = (dims, arrays["case_derivatives"][..., k],
+                                  {"long_name": f"d({long_name})/dy{derivative}", "units": per_metre(unit)})
+        for k, (name, unit, long_name, _) in enumerate(PATCH_OUTPUTS):
+            data[f"{name}_dy"] = (patch_dims, arrays["patch_derivatives"][..., k],
+                                  {"long_name": f"d({long_name})/dy{derivative}", "units": per_metre(unit)})
     coords = {
         "pair": ("pair", [p["name"] for p in canonical["pairs"]], {"long_name": "wheel/rail profile pair",
                                                                   "units": "1"}),
@@ -691,9 +732,14 @@ def contact_table(store):
     topology = topology_codes(arrays["status"], arrays["patch_count"])
     topology = np.where(arrays["done"], topology, -127)
     values = np.where((topology >= 0)[..., None], values, np.nan)
+    measured = None
+    if "case_derivatives" in arrays:  # an absent patch's 0 has no measured slope: NaN, PCHIP's 0
+        measured = np.concatenate([arrays["case_derivatives"], arrays["patch_derivatives"].reshape(shape + (-1,))],
+                                  axis=-1)
     return ContactTable(lateral_shift_m=canonical["lateral_shift_m"], yaw_rad=canonical["yaw_rad"],
                         load_n=canonical["load_n"], pair_names=[p["name"] for p in canonical["pairs"]],
-                        output_names=list(names), output_units=list(units), values=values, topology=topology)
+                        output_names=list(names), output_units=list(units), values=values, topology=topology,
+                        measured_shift_derivatives=measured)
 
 
 def export(store, out):
