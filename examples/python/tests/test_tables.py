@@ -302,3 +302,33 @@ def test_measured_shift_derivatives_are_central_differences_that_the_table_takes
     with netCDF4.Dataset(netcdf) as read:
         assert read["normal_force_dy"].units == "N m-1"
         assert read["normal_force_dy"].dimensions == ("pair", "load", "yaw", "y", "wheel", "patch")
+
+
+def test_pressure_fields_are_resampled_on_a_fixed_patch_grid(tmp_path):
+    # docs/tables.md §3: with pressure_grid each patch's pressure is kept on fixed cells about
+    # its contact reference point, float32: its sum times a cell's area is the patch's normal
+    # force to the resampling's accuracy, and its peak is the element pressures' peak or below.
+    grid = {"cells": [48, 40], "length_m": 0.024, "width_m": 0.030}
+    spec = dict(SMALL, lateral_shift_m=[0.0, 2e-3], yaw_rad=[0.0], pressure_grid=grid)
+    store = str(tmp_path / "pressure")
+    tables.build(spec, store, executor="serial", progress=False)
+    canonical, arrays = tables.load_arrays(store)
+    assert canonical["pressure_grid"] == grid
+    assert "pressure_grid" not in tables.canonical_spec(SMALL)
+    pressure = arrays["pressure"]
+    assert pressure.dtype == np.float32 and pressure.shape == (1, 1, 1, 2, 2, 2, 40, 48)
+    cell_area = grid["length_m"] / 48 * grid["width_m"] / 40
+    force = [name for name, *_ in tables.PATCH_OUTPUTS].index("normal_force")
+    peak = [name for name, *_ in tables.PATCH_OUTPUTS].index("max_pressure")
+    for i in range(2):
+        for w in range(2):
+            field, values = pressure[0, 0, 0, i, w, 0], arrays["patch_values"][0, 0, 0, i, w, 0]
+            assert field.sum(dtype=np.float64) * cell_area == pytest.approx(values[force], rel=0.02)
+            assert 0.8 * values[peak] < field.max() <= values[peak] * (1 + 1e-6)
+            assert field[0].max() == 0 and field[:, 0].max() == 0  # the cells reach past the patch
+            # No second patch on the tread: NaN there.
+            assert np.isnan(pressure[0, 0, 0, i, w, 1]).all()
+    dataset = tables.open(store)
+    assert dataset["pressure"].attrs["units"] == "Pa"
+    assert dataset["pressure_x"].attrs["units"] == "m" and dataset.sizes["pressure_x"] == 48
+    np.testing.assert_allclose(dataset["pressure_x"].values[[0, -1]], [-0.012 + 0.00025, 0.012 - 0.00025])

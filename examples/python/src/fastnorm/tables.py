@@ -79,16 +79,56 @@ def _flat_outputs():
     return flat
 
 
-def _empty_arrays(cases, derivatives=False):
-    """The arrays of `cases` cases as a shard holds them: not computed (status 0, NaN); with
-    `derivatives`, also the outputs' measured d/dy (the spec's shift_derivative_step)."""
+def _empty_arrays(cases, canonical=None):
+    """The arrays of `cases` cases as a shard holds them: not computed (status 0, NaN); with the
+    spec's shift_derivative_step, also the outputs' measured d/dy, and with its pressure_grid
+    the patches' resampled pressures (float32)."""
+    canonical = canonical or {}
     arrays = {"status": np.zeros(cases, np.int8), "patch_count": np.zeros((cases, len(WHEELS)), np.int8),
               "case_values": np.full((cases, len(CASE_OUTPUTS)), np.nan),
               "patch_values": np.full((cases, len(WHEELS), PATCHES, len(PATCH_OUTPUTS)), np.nan)}
-    if derivatives:
+    if "shift_derivative_step" in canonical:
         arrays["case_derivatives"] = np.full_like(arrays["case_values"], np.nan)
         arrays["patch_derivatives"] = np.full_like(arrays["patch_values"], np.nan)
+    if "pressure_grid" in canonical:
+        cells_x, cells_s = canonical["pressure_grid"]["cells"]
+        arrays["pressure"] = np.full((cases, len(WHEELS), PATCHES, cells_s, cells_x), np.nan, np.float32)
     return arrays
+
+
+def pressure_grid_axes(pressure_grid):
+    """The cell centres (x, s) of the spec's pressure_grid, in the patch's tangent plane about its
+    contact reference point (m): x along the rolling direction, s across."""
+    cells_x, cells_s = pressure_grid["cells"]
+    length, width = pressure_grid["length_m"], pressure_grid["width_m"]
+    return (length * ((np.arange(cells_x) + 0.5) / cells_x - 0.5),
+            width * ((np.arange(cells_s) + 0.5) / cells_s - 0.5))
+
+
+def _resample_pressure(patch, axes):
+    """The patch's element pressures at the fixed cells' centres (s rows, x columns), bilinear
+    between element centres, zero beyond the patch's grid (no contact there); float32. Not
+    force-conserving: the force is normal_force."""
+    grid = patch.grid
+    padded = np.zeros((grid.my + 2, grid.mx + 2))
+    padded[1:-1, 1:-1] = patch.solution.pressure_pa
+    # The grid's coordinates are about its origin reference_m; the cells about the reference point.
+    offset = np.asarray(patch.centre_m) - np.asarray(patch.reference_m)
+    x = axes[0] + float(np.dot(offset, patch.e_x))
+    s = axes[1] + float(np.dot(offset, patch.t_s))
+
+    def split(coordinate, origin, step, count):
+        # Index into the padded grid (1 + element index), clipped into its zero border.
+        at = np.clip((coordinate - origin) / step + 1, 0, count + 1)
+        lower = np.minimum(np.floor(at).astype(int), count)
+        return lower, at - lower
+
+    i, ti = split(x, grid.x0_m, grid.dx_m, grid.mx)
+    j, tj = split(s, grid.y0_m, grid.dy_m, grid.my)
+    i, ti, j, tj = i[None, :], ti[None, :], j[:, None], tj[:, None]
+    value = ((1 - tj) * ((1 - ti) * padded[j, i] + ti * padded[j, i + 1]) +
+             tj * ((1 - ti) * padded[j + 1, i] + ti * padded[j + 1, i + 1]))
+    return value.astype(np.float32)
 
 
 def _extent(patch, axis, size):
@@ -173,6 +213,16 @@ def canonical_spec(spec, base="."):
         if not (np.isfinite(step) and 0 < step < 1e-3):
             raise ValueError(f"spec: shift_derivative_step must be a step in m between 0 and 1e-3 (got {step})")
         optional["shift_derivative_step"] = step  # only when set: older stores' specs stay equal
+    if spec.get("pressure_grid") is not None:
+        grid = spec["pressure_grid"]
+        try:
+            cells = [int(n) for n in grid["cells"]]
+            length, width = float(grid["length_m"]), float(grid["width_m"])
+        except (KeyError, TypeError, ValueError) as error:
+            raise ValueError(f"spec: pressure_grid needs cells [nx, ns], length_m and width_m ({error})") from None
+        if len(cells) != 2 or not all(2 <= n <= 512 for n in cells) or not (0 < length < 1 and 0 < width < 1):
+            raise ValueError(f"spec: pressure_grid needs 2..512 cells a side and sizes in (0, 1) m (got {grid})")
+        optional["pressure_grid"] = {"cells": cells, "length_m": length, "width_m": width}
     return {**optional,
         "fastnorm_version": __version__,
         "kind": kind,
@@ -261,12 +311,13 @@ def compute_chunk(text, pair, number):
     first = number * canonical["chunk_size"]
     cases = range(first, min(first + canonical["chunk_size"], total))
     step = canonical.get("shift_derivative_step")
-    arrays = _empty_arrays(len(cases), derivatives=step is not None)
+    pressure_axes = pressure_grid_axes(canonical["pressure_grid"]) if "pressure_grid" in canonical else None
+    arrays = _empty_arrays(len(cases), canonical)
     model = _model(canonical, digest, pair)
     for row, case in enumerate(cases):
         load, yaw, shift = np.unravel_index(case, shape)
         at = (canonical["load_n"][load], canonical["yaw_rad"][yaw], canonical["lateral_shift_m"][shift])
-        found = _solve_case(model, *at)
+        found = _solve_case(model, *at, pressure_axes=pressure_axes)
         for name, array in found.items():
             arrays[name][row] = array
         if step is None:
@@ -282,18 +333,24 @@ def compute_chunk(text, pair, number):
     return arrays
 
 
-def _solve_case(model, load, yaw, shift):
-    """One case's arrays (as _empty_arrays' rows) from an equilibrium of a reset model: no
-    history, so that the same case gives the same numbers in any chunk order."""
+def _solve_case(model, load, yaw, shift, pressure_axes=None):
+    """One case's arrays (as _empty_arrays' rows: values, and the resampled pressures with
+    `pressure_axes`) from an equilibrium of a reset model: no history, so that the same case
+    gives the same numbers in any chunk order."""
     model.reset()
     found = model.equilibrium(load_n=load, lateral_shift_m=shift, yaw_rad=yaw)
     arrays = {name: array[0] for name, array in _empty_arrays(1).items()}
+    if pressure_axes is not None:
+        arrays["pressure"] = np.full((len(WHEELS), PATCHES, len(pressure_axes[1]), len(pressure_axes[0])), np.nan,
+                                     np.float32)
     arrays["status"] = STATUS_CODES[found.status]
     arrays["case_values"][:] = [value(found) for _, _, _, value in CASE_OUTPUTS]
     for w, wheel in enumerate(found.wheels):
         arrays["patch_count"][w] = len(wheel.patches)
         for p, patch in enumerate(wheel.patches[:PATCHES]):
             arrays["patch_values"][w, p] = [value(patch) for _, _, _, value in PATCH_OUTPUTS]
+            if pressure_axes is not None:
+                arrays["pressure"][w, p] = _resample_pressure(patch, pressure_axes)
     return arrays
 
 
@@ -655,7 +712,7 @@ def load_arrays(store):
     shape = case_shape(canonical)
     total = int(np.prod(shape))
     per_pair = int(np.prod(shape[1:]))
-    arrays = _empty_arrays(total, derivatives="shift_derivative_step" in canonical)
+    arrays = _empty_arrays(total, canonical)
     arrays["done"] = np.zeros(total, bool)
     size = canonical["chunk_size"]
     for chunk in all_chunks(canonical):
@@ -698,6 +755,10 @@ def open(store):  # noqa: A001 - fastnorm.tables.open, as xarray.open_dataset
         for k, (name, unit, long_name, _) in enumerate(PATCH_OUTPUTS):
             data[f"{name}_dy"] = (patch_dims, arrays["patch_derivatives"][..., k],
                                   {"long_name": f"d({long_name})/dy{derivative}", "units": per_metre(unit)})
+    if "pressure" in arrays:
+        data["pressure"] = (patch_dims + ("pressure_s", "pressure_x"), arrays["pressure"], {
+            "long_name": "pressure resampled on the fixed patch grid about the contact reference point "
+                         "(bilinear between element centres; NaN: no such patch)", "units": "Pa"})
     coords = {
         "pair": ("pair", [p["name"] for p in canonical["pairs"]], {"long_name": "wheel/rail profile pair",
                                                                   "units": "1"}),
@@ -707,6 +768,12 @@ def open(store):  # noqa: A001 - fastnorm.tables.open, as xarray.open_dataset
         "wheel": ("wheel", list(WHEELS), {"long_name": "wheel of the wheelset", "units": "1"}),
         "patch": ("patch", np.arange(PATCHES), {"long_name": "patch of the wheel, tread first", "units": "1"}),
     }
+    if "pressure" in arrays:
+        pressure_x, pressure_s = pressure_grid_axes(canonical["pressure_grid"])
+        coords["pressure_x"] = ("pressure_x", pressure_x, {
+            "long_name": "resampled pressure's cell centre along the rolling direction", "units": "m"})
+        coords["pressure_s"] = ("pressure_s", pressure_s, {
+            "long_name": "resampled pressure's cell centre across, in the tangent plane", "units": "m"})
     dataset = xr.Dataset(data, coords=coords)
     dataset.attrs.update({"title": "fastnorm contact table", "kind": canonical["kind"],
                           "fastnorm_version": canonical["fastnorm_version"], "solver": canonical["solver"],
