@@ -322,19 +322,19 @@ class ContactTable {
         if (!left && last + 1 < shifts && same(i, last + 1)) ++last;  // one-sided from above
         if (!right && first > 0 && same(i, first - 1)) --first;       // one-sided from below
         const PchipStencil stencil(nodes, {first, last});
+        const std::size_t node = i - first;  // within the stencil
         for (std::size_t o = 0; o < n; ++o) {
           const std::size_t at = (line + i) * n + o;
-          if (!measured_shift_derivatives_.empty() && !std::isnan(measured_shift_derivatives_[at])) {
-            const auto secant = [&](std::size_t a, std::size_t b) {
-              return (values_[(line + b) * n + o] - values_[(line + a) * n + o]) / (nodes[b] - nodes[a]);
-            };
-            shift_derivatives_[at] = limited(measured_shift_derivatives_[at], left ? secant(i - 1, i) : secant(i, i + 1),
-                                             right ? secant(i, i + 1) : secant(i - 1, i));
-            continue;
-          }
           std::array<double, 4> run{};
           for (std::size_t s = 0; s < stencil.count; ++s) run[s] = values_[(line + first + s) * n + o];
-          shift_derivatives_[at] = stencil.derivative(stencil.slopes(run), i - first);
+          const std::array<double, 3> slope = stencil.slopes(run);
+          if (!measured_shift_derivatives_.empty() && !std::isnan(measured_shift_derivatives_[at])) {
+            // The secants to the neighbours of its code: the one there is, twice, at an end.
+            const double before = left ? slope[node - 1] : slope[node], after = right ? slope[node] : slope[node - 1];
+            shift_derivatives_[at] = limited(measured_shift_derivatives_[at], before, after);
+          } else {
+            shift_derivatives_[at] = stencil.derivative(slope, node);
+          }
         }
       }
     }

@@ -311,13 +311,12 @@ def compute_chunk(text, pair, number):
     first = number * canonical["chunk_size"]
     cases = range(first, min(first + canonical["chunk_size"], total))
     step = canonical.get("shift_derivative_step")
-    pressure_axes = pressure_grid_axes(canonical["pressure_grid"]) if "pressure_grid" in canonical else None
     arrays = _empty_arrays(len(cases), canonical)
     model = _model(canonical, digest, pair)
     for row, case in enumerate(cases):
         load, yaw, shift = np.unravel_index(case, shape)
         at = (canonical["load_n"][load], canonical["yaw_rad"][yaw], canonical["lateral_shift_m"][shift])
-        found = _solve_case(model, *at, pressure_axes=pressure_axes)
+        found = _solve_case(model, *at, pressure_grid=canonical.get("pressure_grid"))
         for name, array in found.items():
             arrays[name][row] = array
         if step is None:
@@ -333,16 +332,15 @@ def compute_chunk(text, pair, number):
     return arrays
 
 
-def _solve_case(model, load, yaw, shift, pressure_axes=None):
-    """One case's arrays (as _empty_arrays' rows: values, and the resampled pressures with
-    `pressure_axes`) from an equilibrium of a reset model: no history, so that the same case
-    gives the same numbers in any chunk order."""
+def _solve_case(model, load, yaw, shift, pressure_grid=None):
+    """One case's arrays (as _empty_arrays' rows: values, and the pressures resampled on
+    `pressure_grid` if given) from an equilibrium of a reset model: no history, so that the
+    same case gives the same numbers in any chunk order."""
     model.reset()
     found = model.equilibrium(load_n=load, lateral_shift_m=shift, yaw_rad=yaw)
-    arrays = {name: array[0] for name, array in _empty_arrays(1).items()}
-    if pressure_axes is not None:
-        arrays["pressure"] = np.full((len(WHEELS), PATCHES, len(pressure_axes[1]), len(pressure_axes[0])), np.nan,
-                                     np.float32)
+    spec = {"pressure_grid": pressure_grid} if pressure_grid is not None else None
+    arrays = {name: array[0] for name, array in _empty_arrays(1, spec).items()}
+    pressure_axes = pressure_grid_axes(pressure_grid) if pressure_grid is not None else None
     arrays["status"] = STATUS_CODES[found.status]
     arrays["case_values"][:] = [value(found) for _, _, _, value in CASE_OUTPUTS]
     for w, wheel in enumerate(found.wheels):
