@@ -38,6 +38,16 @@
 //
 // step_us is the wall time of a whole vehicle step, geometry included.
 //
+// And for every reduced solver named, trial steps as an integrator takes them
+// (docs/wheel-rail.md §9): at every step the model's history taken into one History, a trial
+// pose halfway to the next step evaluated, the history restored, the step evaluated:
+//
+//   trial_steps solver=<name> steps=<n> history_us=<t> trial_us=<t> restore_us=<t> step_us=<t>
+//     allocations_per_step=<x> allocating_steps=<n> differing_steps=<n>
+//
+// medians per step of both wheels; differing_steps counts the steps whose force is not that
+// of a model evaluated at the steps alone, to the last bit (0 is the contract).
+//
 // "+cap<N>" (e.g. elliptic+cap3) stops every patch solve after N iterations
 // (SolverSpec::set_max_iterations), and the next step goes on from where it stopped
 // (docs/wheel-rail.md §9, the iteration budget); limited_solves counts the patch solves
@@ -328,6 +338,61 @@ inline void bench_vehicle(const wr::Track& track, const wr::Wheelset& wheelset, 
   std::fflush(stdout);
 }
 
+/// The trial_steps line of `solver` (see the top of this file): at every step the history
+/// taken into one History, a trial pose halfway to the next step evaluated (a Runge–Kutta
+/// stage), the history restored and the step evaluated; each part timed (medians over the
+/// steps, both wheels), the allocations of the whole counted after the first ten steps, and
+/// the steps whose answer is not the plain run's to the last bit (there must be none).
+inline void bench_trial_steps(const wr::Track& track, const wr::Wheelset& wheelset,
+                              const std::vector<wr::WheelsetPose>& poses, const std::string& solver) {
+  const TrajectorySolver parsed = TrajectorySolver::parse(solver);
+  wr::WheelsetContact<> tried(track, wheelset, parsed.options()), plain(track, wheelset, parsed.options());
+  wr::WheelsetContact<>::History saved;
+  std::vector<double> history_seconds, trial_seconds, restore_seconds, step_seconds;
+  long allocations = 0, allocating_steps = 0, differing_steps = 0;
+  using Clock = std::chrono::steady_clock;
+  const auto seconds = [](Clock::time_point from, Clock::time_point to) {
+    return std::chrono::duration<double>(to - from).count();
+  };
+  for (std::size_t step = 0; step < poses.size(); ++step) {
+    wr::WheelsetPose trial = poses[step];
+    if (step + 1 < poses.size()) {
+      const auto& next = poses[step + 1];
+      trial.y = (trial.y + next.y) / 2, trial.z = (trial.z + next.z) / 2;
+      trial.roll = (trial.roll + next.roll) / 2, trial.yaw = (trial.yaw + next.yaw) / 2;
+    }
+    const long before = fastnorm_example::allocation_count();
+    const auto start = Clock::now();
+    tried.history(saved);
+    const auto taken = Clock::now();
+    tried.evaluate(trial);
+    const auto tried_at = Clock::now();
+    tried.restore(saved);
+    const auto restored = Clock::now();
+    const auto& result = tried.evaluate(poses[step]);
+    const auto done = Clock::now();
+    if (step >= 10) {
+      const long count = fastnorm_example::allocation_count() - before;
+      allocations += count;
+      allocating_steps += count > 0 ? 1 : 0;
+    }
+    history_seconds.push_back(seconds(start, taken));
+    trial_seconds.push_back(seconds(taken, tried_at));
+    restore_seconds.push_back(seconds(tried_at, restored));
+    step_seconds.push_back(seconds(restored, done));
+    differing_steps += result.force == plain.evaluate(poses[step]).force ? 0 : 1;
+  }
+  const bool counted = poses.size() > 10 && fastnorm_example::allocation_count() >= 0;
+  std::printf("trial_steps solver=%s steps=%zu history_us=%.1f trial_us=%.1f restore_us=%.1f step_us=%.1f "
+              "allocations_per_step=%.2f allocating_steps=%ld differing_steps=%ld\n",
+              parsed.label().c_str(), poses.size(), 1e6 * quantile(history_seconds, 0.5),
+              1e6 * quantile(trial_seconds, 0.5), 1e6 * quantile(restore_seconds, 0.5),
+              1e6 * quantile(step_seconds, 0.5),
+              counted ? static_cast<double>(allocations) / static_cast<double>(poses.size() - 10) : -1.0,
+              counted ? allocating_steps : -1L, differing_steps);
+  std::fflush(stdout);
+}
+
 /// Runs NORM first (the reference), then every solver of `solvers`, and prints their lines;
 /// then the warm-versus-cold comparison of every reduced solver that ran both ways, and the
 /// vehicle lines of every reduced solver.
@@ -372,7 +437,9 @@ inline void bench_trajectory(const std::vector<std::string>& solvers, int steps)
   const int quarter_period = 250;  // steps: a quarter of the 1 Hz motion at 1 kHz
   const auto vehicle_poses = trajectory_poses(track, wheelset, steps + 3 * quarter_period);
   for (const auto& name : solvers) {
-    if (TrajectorySolver::parse(name).spec.is_reduced()) bench_vehicle(track, wheelset, vehicle_poses, steps, quarter_period, name);
+    if (!TrajectorySolver::parse(name).spec.is_reduced()) continue;
+    bench_vehicle(track, wheelset, vehicle_poses, steps, quarter_period, name);
+    bench_trial_steps(track, wheelset, poses, name);
   }
 }
 

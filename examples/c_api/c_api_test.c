@@ -248,6 +248,37 @@ static void wheelset_equilibrium_and_time_step(void) {
   fastnorm_wheelset_destroy(model);
 }
 
+/* Trial steps (docs/wheel-rail.md §9): a model that saves its history, evaluates a trial pose
+ * far off and restores, then evaluates the next step, gives bit for bit the forces of a model
+ * that evaluated the steps alone; a restore with nothing saved is refused by name. */
+static void wheelset_trial_steps(void) {
+  fastnorm_wheelset_options options = elliptic_on_30_elements();
+  fastnorm_wheelset *tried = NULL, *plain = NULL;
+  REQUIRE_OK(fastnorm_wheelset_create(&options, &tried));
+  REQUIRE_OK(fastnorm_wheelset_create(&options, &plain));
+  expect_error(fastnorm_wheelset_restore_history(tried), "no history saved");
+  fastnorm_equilibrium found; /* both models in the same state: the same equilibrium */
+  REQUIRE_OK(fastnorm_wheelset_equilibrium(tried, 2e5, 1e-3, 0.0, &found));
+  REQUIRE_OK(fastnorm_wheelset_equilibrium(plain, 2e5, 1e-3, 0.0, &found));
+  double tried_force[3], plain_force[3];
+  for (int step = 1; step <= 3; ++step) {
+    fastnorm_pose pose = found.pose;
+    pose.y += 0.2e-3 * step;
+    REQUIRE_OK(fastnorm_wheelset_save_history(tried));
+    fastnorm_pose trial = pose;
+    trial.y += 1.5e-3;
+    trial.z += 0.03e-3;
+    REQUIRE_OK(fastnorm_wheelset_evaluate(tried, &trial, tried_force, NULL));
+    REQUIRE_OK(fastnorm_wheelset_restore_history(tried));
+    REQUIRE_OK(fastnorm_wheelset_evaluate(tried, &pose, tried_force, NULL));
+    REQUIRE_OK(fastnorm_wheelset_evaluate(plain, &pose, plain_force, NULL));
+    for (int c = 0; c < 3; ++c) EXPECT(tried_force[c] == plain_force[c]);
+  }
+  printf("trial steps restored: vertical force %.10g N, as without the trials\n", tried_force[2]);
+  fastnorm_wheelset_destroy(tried);
+  fastnorm_wheelset_destroy(plain);
+}
+
 /* Creep forces in the time loop (docs/wheel-rail.md §10): a rolling wheelset with a yaw
  * angle; per patch the tractions sum to the creep forces on the rail, the creep force on the
  * wheel is their opposite along e_x and t_s, and the patch force is -Fn n plus it. */
@@ -525,6 +556,7 @@ int main(int argc, char** argv) {
   peer_case_through_the_api(argv[1], argv[2]);
   bad_input_is_named();
   wheelset_equilibrium_and_time_step();
+  wheelset_trial_steps();
   wheelset_creep_forces();
   steady_rolling_meets_contact();
   case_rolling_is_read(argv[2]);

@@ -40,6 +40,7 @@ struct fastnorm_wheelset {
   std::optional<wr::Equilibrium> equilibrium;  // the last equilibrium, when it was the last call
   std::array<std::vector<const wr::PatchContact*>, 2> patches;  // what fastnorm_wheelset_patch reads
   int iterations;  // the solver iterations of the last evaluate
+  std::optional<wr::WheelsetContact<>::History> saved;  // fastnorm_wheelset_save_history
 };
 
 namespace {
@@ -461,7 +462,7 @@ int fastnorm_wheelset_create(const fastnorm_wheelset_options* options, fastnorm_
                                       options->creep_method));
     contact.creep.method =
         options->creep_method == FASTNORM_FASTSIM ? wr::CreepMethod::fastsim : wr::CreepMethod::strip_theory;
-    *model = new fastnorm_wheelset{wr::WheelsetContact<>(setup.track(), setup.wheelset(), contact), {}, {}, {}, 0};
+    *model = new fastnorm_wheelset{wr::WheelsetContact<>(setup.track(), setup.wheelset(), contact), {}, {}, {}, 0, {}};
   });
 }
 
@@ -517,6 +518,23 @@ int fastnorm_wheelset_reset(fastnorm_wheelset* model) {
     model->equilibrium.reset();
     model->step = {};
     for (auto& patches : model->patches) patches.clear();
+  });
+}
+
+int fastnorm_wheelset_save_history(fastnorm_wheelset* model) {
+  return guarded("fastnorm_wheelset_save_history", [&] {
+    require_pointer(model, "model");
+    if (!model->saved) model->saved.emplace();
+    model->model.history(*model->saved);
+  });
+}
+
+int fastnorm_wheelset_restore_history(fastnorm_wheelset* model) {
+  return guarded("fastnorm_wheelset_restore_history", [&] {
+    require_pointer(model, "model");
+    FASTNORM_CHECK(model->saved.has_value(), "fastnorm_wheelset_restore_history: no history saved "
+                                             "(fastnorm_wheelset_save_history first)");
+    model->model.restore(*model->saved);
   });
 }
 

@@ -269,6 +269,14 @@ module fastnorm_c
       import :: c_int, c_ptr
       type(c_ptr), value :: model
     end function
+    integer(c_int) function fastnorm_wheelset_save_history(model) bind(c)
+      import :: c_int, c_ptr
+      type(c_ptr), value :: model
+    end function
+    integer(c_int) function fastnorm_wheelset_restore_history(model) bind(c)
+      import :: c_int, c_ptr
+      type(c_ptr), value :: model
+    end function
     integer(c_int) function fastnorm_wheelset_patch_count(model, wheel, count) bind(c)
       import :: c_int, c_ptr
       type(c_ptr), value :: model

@@ -307,6 +307,14 @@ FASTNORM_C_API int fastnorm_wheelset_iterations(const fastnorm_wheelset* model, 
 /* The next evaluate starts cold: no previous patches, contact sets or search (storage kept);
  * the patches and status read as after create. */
 FASTNORM_C_API int fastnorm_wheelset_reset(fastnorm_wheelset* model);
+/* Trial steps (docs/wheel-rail.md §9): saves the model's history, what its next evaluate
+ * starts from, in the model's one slot (the last save overwritten, in its storage). An
+ * integrator saves at the accepted step and restores before it evaluates again. */
+FASTNORM_C_API int fastnorm_wheelset_save_history(fastnorm_wheelset* model);
+/* Back to the saved history: the next evaluate gives, bit for bit, what it would have given
+ * right after the save, whatever was evaluated since; the patches of the last evaluate stay
+ * readable. FASTNORM_ERROR_ARGUMENT if nothing was saved. */
+FASTNORM_C_API int fastnorm_wheelset_restore_history(fastnorm_wheelset* model);
 FASTNORM_C_API int fastnorm_wheelset_patch_count(const fastnorm_wheelset* model, int wheel, int* count);
 FASTNORM_C_API int fastnorm_wheelset_patch(const fastnorm_wheelset* model, int wheel, int patch, fastnorm_patch* out);
 /* The patch's pressures (Pa), grid.mx*grid.my values, written. */

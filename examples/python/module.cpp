@@ -457,8 +457,22 @@ class PyWheelset {
     model_.reset();
   }
 
+  void save_history() {
+    const std::lock_guard<std::mutex> lock(calls_);
+    model_.history(saved_);
+    has_saved_ = true;
+  }
+
+  void restore_history() {
+    const std::lock_guard<std::mutex> lock(calls_);
+    FASTNORM_CHECK(has_saved_, "WheelsetContact.restore_history: no history saved (save_history first)");
+    model_.restore(saved_);
+  }
+
  private:
   wr::WheelsetContact<> model_;
+  wr::WheelsetContact<>::History saved_;  // save_history's one slot
+  bool has_saved_ = false;
   std::mutex calls_;  // evaluate changes the model's state
 };
 
@@ -904,6 +918,13 @@ void bind_wheelset(py::module_& m) {
           "reset",
           [](PyWheelset& model) { model.reset(); },
           "The next evaluate starts cold: no previous patches, contact sets or search.")
+      .def("save_history", &PyWheelset::save_history,
+           "Trial steps (docs/wheel-rail.md §9): saves what the next evaluate starts from (one slot, the "
+           "last save overwritten). An integrator saves at the accepted step and restores before it "
+           "evaluates again.")
+      .def("restore_history", &PyWheelset::restore_history,
+           "Back to the saved history: the next evaluate gives, bit for bit, what it would have given right "
+           "after save_history, whatever was evaluated since. ValueError if nothing was saved.")
       .def_property("iteration_budget", &PyWheelset::iteration_budget, &PyWheelset::set_iteration_budget,
                     "the most solver iterations an evaluate may spend over its patch solves, in order, each at "
                     "least one (docs/wheel-rail.md §9); a solve cut short ends at 'iteration limit' and the "

@@ -31,8 +31,15 @@ class AnyWorkspace {
  public:
   AnyWorkspace() = default;
   AnyWorkspace(const AnyWorkspace& other) : model_(other.model_ ? other.model_->clone() : nullptr), pending_(other.pending_) {}
+  /// Copied into the held workspace when both hold one of the same type, so that its
+  /// storage serves again (a time loop's trial steps: WheelsetContact::restore).
   AnyWorkspace& operator=(const AnyWorkspace& other) {
-    if (this != &other) *this = AnyWorkspace(other);
+    if (this == &other) return *this;
+    if (model_ && other.model_ && model_->assign(*other.model_)) {
+      pending_ = other.pending_;
+    } else {
+      *this = AnyWorkspace(other);
+    }
     return *this;
   }
   AnyWorkspace(AnyWorkspace&&) noexcept = default;
@@ -63,6 +70,8 @@ class AnyWorkspace {
     virtual void forget() = 0;
     virtual void recycle(Solution<Scalar>&& used) = 0;
     virtual std::unique_ptr<Model> clone() const = 0;
+    /// Copies `other` into this one if it holds the same type; false otherwise.
+    virtual bool assign(const Model& other) = 0;
   };
   template <typename Workspace>
   struct Holder final : Model {
@@ -70,6 +79,11 @@ class AnyWorkspace {
     void forget() override { workspace.forget(); }
     void recycle(Solution<Scalar>&& used) override { workspace.recycle(std::move(used)); }
     std::unique_ptr<Model> clone() const override { return std::make_unique<Holder>(*this); }
+    bool assign(const Model& other) override {
+      const auto* same = dynamic_cast<const Holder*>(&other);
+      if (same) workspace = same->workspace;
+      return same != nullptr;
+    }
     Workspace workspace;
   };
 

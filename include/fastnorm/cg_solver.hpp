@@ -38,6 +38,26 @@ class CgSolver;
 template <typename Scalar = double>
 class CgWorkspace {
  public:
+  CgWorkspace() = default;
+  CgWorkspace(const CgWorkspace& other) { *this = other; }
+  /// A copy holds what the next solve reads, the start; the FFT plans and buffers, copies of
+  /// a solver's, stay this workspace's own when they are of the same kernel as the other's,
+  /// and the iteration's vectors are this workspace's storage (sized by each solve). A time
+  /// loop's trial steps copy workspaces often (WheelsetContact::restore).
+  CgWorkspace& operator=(const CgWorkspace& other) {
+    if (this == &other) return *this;
+    start_ = other.start_;
+    if (!other.convolution_) {
+      convolution_.reset(), preconditioner_.reset();
+    } else if (!convolution_ || !convolution_->same_kernel(*other.convolution_)) {
+      convolution_ = other.convolution_, preconditioner_ = other.preconditioner_;
+    }
+    return *this;
+  }
+  CgWorkspace(CgWorkspace&&) noexcept = default;
+  CgWorkspace& operator=(CgWorkspace&&) noexcept = default;
+  ~CgWorkspace() = default;
+
   /// Where the next solve starts; after a solve, its pressures and contact set.
   WarmStart<Scalar>& start() { return start_; }
   const WarmStart<Scalar>& start() const { return start_; }

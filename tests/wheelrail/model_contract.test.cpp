@@ -384,32 +384,45 @@ TEST_CASE("A per-solve cap bounds warm solves only, and a capped model follows t
 
 namespace {
 
-// Along a short trajectory, a trial step evaluated, its history restored and the step
-// evaluated again: bit for bit the answer of a model that never saw the trial.
+// Along a short trajectory, trial steps evaluated, the history restored after each and the
+// step evaluated again: bit for bit the answer of a model that never saw the trials. As a
+// Runge–Kutta integrator takes them: one History kept from step to step (history(saved)),
+// three trials a step, far off (new boxes, another patch count) and near; the restored
+// model's spare workspaces are then not the untried model's, which no answer may show.
 template <typename Solver>
 void check_trial_steps(const char* name) {
   INFO(name);
   const auto options = coarse(name);
   wr::WheelsetContact<Solver> model(wr::Track(), wr::Wheelset(), options);
   wr::WheelsetContact<Solver> untried(wr::Track(), wr::Wheelset(), options);
+  typename wr::WheelsetContact<Solver>::History saved;
   const auto base = pressed_pose();
-  for (int step = 0; step < 6; ++step) {
+  for (int step = 0; step < 8; ++step) {
     wr::WheelsetPose pose = base;
     pose.y += 0.4e-3 * step;  // more than an element per step: new boxes and shifted sets
     pose.yaw += 1e-3 * step;
-    const auto saved = model.history();
-    wr::WheelsetPose trial = pose;  // a rejected trial, far off
-    trial.y += 1.5e-3;
-    trial.z += 0.05e-3;
-    model.evaluate(trial);
-    model.restore(saved);
+    model.history(saved);
+    for (const auto& [shift, lift] : {std::pair{1.5e-3, -0.05e-3}, std::pair{0.1e-3, 0.01e-3}, std::pair{-2.5e-3, 0.0}}) {
+      wr::WheelsetPose trial = pose;  // a rejected trial
+      trial.y += shift;
+      trial.z -= lift;
+      model.evaluate(trial);
+      model.restore(saved);
+    }
     check_same_patches(model.evaluate(pose), untried.evaluate(pose));
   }
+  // history() by value is the same history.
+  const auto copy = model.history();
+  wr::WheelsetPose trial = base;
+  trial.y -= 1e-3;
+  model.evaluate(trial);
+  model.restore(copy);
+  check_same_patches(model.evaluate(base), untried.evaluate(base));
 }
 
 }  // namespace
 
-TEST_CASE("A trial step restored leaves no trace: the step again is bit for bit the untried model's",
+TEST_CASE("Trial steps restored leave no trace: the step again is bit for bit the untried model's",
           "[wheelrail][model]") {
   check_trial_steps<fastnorm::NormSolver<>>("norm");
   check_trial_steps<fastnorm::CgSolver<>>("cg");

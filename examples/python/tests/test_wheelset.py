@@ -233,3 +233,25 @@ def test_a_per_solve_cap_bounds_warm_solves_only():
     assert statuses <= {"budget reached", "converged"} and "budget reached" in statuses
     with pytest.raises(ValueError, match="warm_solve_iterations must be >= 0"):
         fastnorm.WheelsetContact(solver="elliptic", elements=20, warm_solve_iterations=-1)
+
+
+def test_trial_steps_restored_give_the_untried_models_answers():
+    # docs/wheel-rail.md §9: save at the accepted step, a trial far off, restore, the next step.
+    tried = fastnorm.WheelsetContact(solver="elliptic", elements=20)
+    plain = fastnorm.WheelsetContact(solver="elliptic", elements=20)
+    with pytest.raises(ValueError, match="no history saved"):
+        tried.restore_history()
+    start = [model.equilibrium(load_n=2e5, lateral_shift_m=1e-3).pose for model in (tried, plain)][0]
+    for step in range(1, 4):
+        pose = fastnorm.Pose(lateral_shift_m=start.lateral_shift_m + 0.3e-3 * step, vertical_m=start.vertical_m,
+                             roll_rad=start.roll_rad)
+        tried.save_history()
+        tried.evaluate(fastnorm.Pose(lateral_shift_m=pose.lateral_shift_m + 1.5e-3, vertical_m=start.vertical_m + 3e-5,
+                                     roll_rad=start.roll_rad))
+        tried.restore_history()
+        result, expected = tried.evaluate(pose), plain.evaluate(pose)
+        assert result.ok and all(wheel.patches for wheel in result.wheels)
+        assert np.array_equal(result.force_n, expected.force_n)
+        for wheel, reference in zip(result.wheels, expected.wheels):
+            for patch, other in zip(wheel.patches, reference.patches):
+                assert np.array_equal(patch.solution.pressure_pa, other.solution.pressure_pa)

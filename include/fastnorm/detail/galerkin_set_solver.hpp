@@ -50,6 +50,24 @@ struct GalerkinMemory {
   ScratchMatrix<Scalar> coupling, times_basis, block_entries, reduced_rhs, coefficients;
   std::size_t system_capacity = 0;  // values of the largest matrix or factor recycled
 
+  GalerkinMemory() = default;
+  GalerkinMemory(const GalerkinMemory& other) { *this = other; }
+  /// A copy holds what the next solve reads of the memory, the assemblies of the last solve
+  /// (`path`; next_problem() recycles `last_path` first, unread), copied into this
+  /// memory's own assemblies and spares; its spares and its one set's workspace stay its
+  /// own storage (a time loop's trial steps copy workspaces often: WheelsetContact::restore).
+  GalerkinMemory& operator=(const GalerkinMemory& other) {
+    if (this != &other) {
+      recycle(last_path);
+      copy_assemblies(other.path, path);
+      system_capacity = std::max(system_capacity, other.system_capacity);
+    }
+    return *this;
+  }
+  GalerkinMemory(GalerkinMemory&&) noexcept = default;
+  GalerkinMemory& operator=(GalerkinMemory&&) noexcept = default;
+  ~GalerkinMemory() = default;
+
   /// Storage for sets of up to `segment_count` segments and solves of up to `set_count`
   /// sets, so that the usual sets of a grid do not grow it a little at a time (nothing once
   /// reserved). The Galerkin matrices and factors still grow to the largest system met.
@@ -89,6 +107,21 @@ struct GalerkinMemory {
       spare.push_back(std::move(assembly));
     }
     assemblies.clear();
+  }
+  /// `to` made a copy of `from`, in assemblies it holds or takes from the spares.
+  void copy_assemblies(const std::vector<Assembly>& from, std::vector<Assembly>& to) {
+    while (to.size() > from.size()) {
+      spare.push_back(std::move(to.back()));
+      to.pop_back();
+    }
+    while (to.size() < from.size()) to.push_back(take_spare());
+    for (std::size_t k = 0; k < from.size(); ++k) {
+      // Lists with the source's room: a copy of a longer set later still fits.
+      to[k].segments.reserve(from[k].segments.capacity());
+      to[k].order.reserve(from[k].order.capacity());
+      to[k].offsets.reserve(from[k].offsets.capacity());
+      to[k] = from[k];
+    }
   }
   /// No set to look up any more (another solver's, or a cold start): every assembly
   /// becomes storage to reuse.

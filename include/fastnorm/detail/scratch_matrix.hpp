@@ -6,6 +6,7 @@
 /// has met its largest system (docs/performance.md §3).
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <vector>
 
 namespace fastnorm {
@@ -16,6 +17,21 @@ class ScratchMatrix {
  public:
   using Index = Eigen::Index;
   using Matrix = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;
+
+  ScratchMatrix() = default;
+  ScratchMatrix(const ScratchMatrix& other) { *this = other; }
+  /// Copies the view of the last resize (what a reader sees) into this storage, grown only
+  /// if it is smaller; the values beyond the view are not copied.
+  ScratchMatrix& operator=(const ScratchMatrix& other) {
+    if (this != &other) {
+      resize(other.rows_, other.cols_);
+      std::copy_n(other.values_.data(), static_cast<std::size_t>(rows_ * cols_), values_.data());
+    }
+    return *this;
+  }
+  ScratchMatrix(ScratchMatrix&&) noexcept = default;
+  ScratchMatrix& operator=(ScratchMatrix&&) noexcept = default;
+  ~ScratchMatrix() = default;
 
   /// A rows × cols view of the storage, grown if needed; contents undefined.
   Eigen::Map<Matrix> resize(Index rows, Index cols) {

@@ -132,6 +132,32 @@ inline std::vector<GapSample> sample_gap(const Track& track, const Wheelset& whe
 /// change beyond drift_limit, takes every coarse sample again.
 class GapSampler {
  public:
+  GapSampler() = default;
+  GapSampler(const GapSampler& other) { *this = other; }
+  /// A copy takes the other's samples where it took them (its refined stretches and coarse
+  /// samples; every other sample is +∞ in both), not all of the thousands: a time loop's
+  /// trial steps copy the search often (WheelsetContact::restore).
+  GapSampler& operator=(const GapSampler& other) {
+    if (this == &other) return *this;
+    if (samples_.size() == other.samples_.size()) {
+      for_taken([&](std::size_t k) { samples_[k] = GapSample{}; });
+      other.for_taken([&](std::size_t k) { samples_[k] = other.samples_[k]; });
+    } else {
+      samples_ = other.samples_;
+    }
+    track_id_ = other.track_id_, wheelset_id_ = other.wheelset_id_;
+    rail_first_y_ = other.rail_first_y_, rail_last_y_ = other.rail_last_y_;
+    side_ = other.side_, step_ = other.step_;
+    last_pose_ = other.last_pose_;
+    refined_ = other.refined_;
+    coarse_ = other.coarse_;
+    slope_bins_ = other.slope_bins_;
+    return *this;
+  }
+  GapSampler(GapSampler&&) noexcept = default;
+  GapSampler& operator=(GapSampler&&) noexcept = default;
+  ~GapSampler() = default;
+
   /// The samples of `side` at `pose` (all 1 + ⌈(y_max − y_min)/step⌉ of them; storage
   /// reused from call to call).
   const std::vector<GapSample>& sample(const Track& track, const Wheelset& wheelset, Side side,
@@ -171,11 +197,7 @@ class GapSampler {
     // Back to +∞ only what the last call can have taken, its refined stretches and the
     // coarse samples: a few hundred of the thousands.
     if (samples_.size() == count + 1) {
-      for (const auto& stretch : refined_) {
-        std::fill(samples_.begin() + static_cast<std::ptrdiff_t>(stretch.first),
-                  samples_.begin() + static_cast<std::ptrdiff_t>(stretch.second) + 1, GapSample{});
-      }
-      for (std::size_t c = 0; c < coarse_.size(); ++c) samples_[std::min(c * coarse_stride, count)] = GapSample{};
+      for_taken([&](std::size_t k) { samples_[k] = GapSample{}; });
     } else {
       samples_.assign(count + 1, GapSample{});
     }
@@ -233,6 +255,18 @@ class GapSampler {
     double radius_slope = 0;   ///< dρ/dy_ws
     double reach = 0;          ///< |q|, the point's distance from the wheelset centre
   };
+
+  /// `visit(k)` for every sample the last call can have taken: its refined stretches and the
+  /// coarse samples (some twice).
+  template <typename Visit>
+  void for_taken(const Visit& visit) const {
+    if (samples_.empty()) return;
+    const std::size_t last = samples_.size() - 1;
+    for (const auto& stretch : refined_) {
+      for (std::size_t k = stretch.first; k <= stretch.second; ++k) visit(k);
+    }
+    for (std::size_t c = 0; c < coarse_.size(); ++c) visit(std::min(c * coarse_stride, last));
+  }
 
   /// A cold start: every coarse sample to be taken, the slope table of a new track.
   void start(const Track& track, const Wheelset& wheelset, Side side, double step, std::size_t count) {

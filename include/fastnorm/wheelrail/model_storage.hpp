@@ -41,6 +41,15 @@ void resize_keeping_storage(std::vector<T>& used, std::vector<T>& spare, std::si
   }
 }
 
+/// `to` made a copy of `from` element by element, in the storage its elements hold (see
+/// resize_keeping_storage for `spare`): copying into kept vectors and workspaces allocates
+/// only where they are smaller than what they receive.
+template <typename T>
+void copy_keeping_storage(const std::vector<T>& from, std::vector<T>& to, std::vector<T>& spare) {
+  resize_keeping_storage(to, spare, from.size());
+  for (std::size_t k = 0; k < from.size(); ++k) to[k] = from[k];
+}
+
 /// One solver per grid size met (element sizes fixed: solvers do not depend on the grid's
 /// origin), each with its influence table, and the workspaces with its storage that no
 /// patch holds at the moment. The solvers of a reduced kind share one set of segment
@@ -80,10 +89,12 @@ class SolverCache {
   const Solver& solver(std::size_t s) const { return slots_[s].solver; }
   std::size_t size() const { return slots_.size(); }
 
-  /// A spare workspace of solver `s`; else, if `across_sizes`, with what it kept forgotten,
-  /// one of the largest grid's solver that has a spare (a workspace may move between
-  /// solvers: a reduced solver's storage keeps its capacity and serves the new one, where
-  /// NORM's and CG's grid-sized vectors would be allocated again); else a new one.
+  /// A spare workspace of solver `s`; else, if `across_sizes`, one of the largest grid's
+  /// solver that has a spare (a workspace may move between solvers: a reduced solver's
+  /// storage keeps its capacity and serves the new one, where NORM's and CG's grid-sized
+  /// vectors would be allocated again); else a new one. A spare comes with what it kept of
+  /// earlier solves forgotten, so that no answer depends on which spare a patch took (after
+  /// trials restored, the spares are not those of a model that never saw them).
   Workspace take_workspace(std::size_t s, bool across_sizes) {
     std::size_t from = s;
     if (slots_[s].spare.empty()) {
@@ -98,18 +109,12 @@ class SolverCache {
     }
     Workspace workspace = std::move(slots_[from].spare.back());
     slots_[from].spare.pop_back();
-    if (from != s) workspace.forget();
+    workspace.forget();
     return workspace;
   }
 
   /// A workspace of solver `s` that no patch holds any more.
   void give_back(std::size_t s, Workspace&& workspace) { slots_[s].spare.push_back(std::move(workspace)); }
-
-  /// Every spare workspace forgets what it kept of earlier solves (storage kept).
-  void forget_spares() {
-    for (auto& slot : slots_)
-      for (auto& workspace : slot.spare) workspace.forget();
-  }
 
  private:
   Solver make(const Grid<double>& grid, const SolverSpec<double>& spec, const Material<double>& material) const {

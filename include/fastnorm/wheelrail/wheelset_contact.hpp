@@ -187,33 +187,49 @@ class WheelsetContact {
       keep_spare_workspaces(states);
       detail::resize_keeping_storage(states, spare_states_, 0);
     }
-    solvers_.forget_spares();
   }
 
   /// What the next evaluate starts from: each patch's frame, lattice box, contact set and
   /// solver workspace, and each wheel's contact search (docs/wheel-rail.md §9, trial steps).
+  /// Taken again into the same History (history(saved)), it is overwritten in its storage.
   class History {
     friend class WheelsetContact;
     std::array<std::vector<State>, 2> states;
+    std::vector<State> spare_states;  // beyond a wheel's patch count, storage kept
     std::array<GapSampler, 2> samplers;
   };
 
-  /// A copy of the committed history (taking it allocates), for an integrator that
-  /// evaluates trial poses and may reject them.
+  /// A copy of the committed history, for an integrator that evaluates trial poses and may
+  /// reject them. It allocates; history(saved) into a History kept from step to step does not.
   History history() const {
     History saved;
-    saved.states = states_;
-    saved.samplers = samplers_;
+    history(saved);
     return saved;
   }
 
+  /// The committed history copied into `saved`, in the storage it holds from earlier
+  /// copies: once it has held as many patches of the sizes met, nothing is allocated.
+  void history(History& saved) const {
+    for (std::size_t w = 0; w < 2; ++w) detail::copy_keeping_storage(states_[w], saved.states[w], saved.spare_states);
+    saved.samplers = samplers_;
+  }
+
   /// Back to `saved`: the next evaluate gives, bit for bit, what it would have given right
-  /// after history() was taken, whatever was evaluated since. Solvers and their tables built
-  /// since are kept (they do not depend on the history); the last result stays readable.
+  /// after history() was taken, whatever was evaluated since. The patches' workspaces go
+  /// back to their solvers' spares and the saved ones are copied into spares taken again,
+  /// so that trials neither pile up storage nor, once their sizes repeat, allocate.
+  /// Solvers and their tables built since are kept (they do not depend on the history);
+  /// the last result stays readable.
   void restore(const History& saved) {
     for (std::size_t w = 0; w < 2; ++w) {
       keep_spare_workspaces(states_[w]);
-      states_[w] = saved.states[w];
+      detail::resize_keeping_storage(states_[w], spare_states_, saved.states[w].size());
+      for (std::size_t k = 0; k < states_[w].size(); ++k) {
+        State& state = states_[w][k];
+        const State& from = saved.states[w][k];
+        state.workspace = solvers_.take_workspace(from.solver, options_.solver.is_reduced());  // storage to copy into
+        state = from;
+      }
     }
     samplers_ = saved.samplers;
   }
