@@ -418,6 +418,13 @@ void check_trial_steps(const char* name) {
   model.evaluate(trial);
   model.restore(copy);
   check_same_patches(model.evaluate(base), untried.evaluate(base));
+  // Another model's history, on other element sizes, is refused and changes nothing.
+  auto other_options = options;
+  other_options.grid.elements = 16;
+  wr::WheelsetContact<Solver> other(wr::Track(), wr::Wheelset(), other_options);
+  other.evaluate(base);
+  CHECK_THROWS_WITH(model.restore(other.history()), Contains("another model's"));
+  check_same_patches(model.evaluate(trial), untried.evaluate(trial));
 }
 
 }  // namespace

@@ -220,7 +220,18 @@ class WheelsetContact {
   /// so that trials neither pile up storage nor, once their sizes repeat, allocate.
   /// Solvers and their tables built since are kept (they do not depend on the history);
   /// the last result stays readable.
+  /// @throws fastnorm::invalid_argument for a history whose patches' grids this model has no
+  ///         solver of (another model's, of other element sizes), the model left unchanged
   void restore(const History& saved) {
+    for (const auto& states : saved.states) {
+      for (const State& from : states) {
+        FASTNORM_CHECK(from.solver < solvers_.size() && from.grid.dx() == dx_ && from.grid.dy() == ds_ &&
+                           solvers_.solver(from.solver).grid().mx() == from.grid.mx() &&
+                           solvers_.solver(from.solver).grid().my() == from.grid.my(),
+                       "WheelsetContact::restore: the history is another model's (its patches' grids are not "
+                       "this model's)");
+      }
+    }
     for (std::size_t w = 0; w < 2; ++w) {
       keep_spare_workspaces(states_[w]);
       detail::resize_keeping_storage(states_[w], spare_states_, saved.states[w].size());
