@@ -113,6 +113,30 @@ inline std::vector<wr::WheelsetVelocity> trajectory_velocities(const wr::Wheelse
   return velocities;
 }
 
+/// The allocations inside the timed calls of a run's steps, counted after its first ten
+/// (the warm-up): per step on average and the steps with any (-1: not counted in this build).
+class StepAllocations {
+ public:
+  static constexpr std::size_t warm_up = 10;
+  /// Before the step's calls.
+  void start() { before_ = fastnorm_example::allocation_count(); }
+  /// After them: step `step` of the run.
+  void stop(std::size_t step) {
+    if (step < warm_up) return;
+    const long count = fastnorm_example::allocation_count() - before_;
+    total_ += count;
+    steps_ += count > 0 ? 1 : 0;
+  }
+  bool counted(std::size_t steps) const { return steps > warm_up && fastnorm_example::allocation_count() >= 0; }
+  double per_step(std::size_t steps) const {
+    return counted(steps) ? static_cast<double>(total_) / static_cast<double>(steps - warm_up) : -1.0;
+  }
+  long steps_allocating(std::size_t steps) const { return counted(steps) ? steps_ : -1; }
+
+ private:
+  long before_ = 0, total_ = 0, steps_ = 0;
+};
+
 /// What one solver's run records.
 struct TrajectoryRun {
   std::vector<double> search, distance, solve, tangential, total;  // s, per wheel per step
@@ -179,16 +203,11 @@ inline TrajectoryRun run_trajectory(const wr::Track& track, const wr::Wheelset& 
   const auto velocities = trajectory_velocities(wheelset, poses);
   TrajectoryRun run;
   long iterations = 0, solves = 0;
-  // Inside evaluate only: the run's own records allocate too.
-  long model_allocations = 0, allocating_steps = 0;
+  StepAllocations allocations;  // inside evaluate only: the run's own records allocate too
   for (std::size_t step = 0; step < poses.size(); ++step) {
-    const long allocations_before = fastnorm_example::allocation_count();
+    allocations.start();
     const auto& result = contact.evaluate(poses[step], velocities[step]);
-    if (step >= 10) {
-      const long allocations = fastnorm_example::allocation_count() - allocations_before;
-      model_allocations += allocations;
-      allocating_steps += allocations > 0 ? 1 : 0;
-    }
+    allocations.stop(step);
     std::array<double, 2> force{};
     for (std::size_t w = 0; w < 2; ++w) {
       const auto& wheel = result.wheels[w];
@@ -213,10 +232,8 @@ inline TrajectoryRun run_trajectory(const wr::Track& track, const wr::Wheelset& 
     }
   }
   run.iterations_per_patch = solves > 0 ? static_cast<double>(iterations) / static_cast<double>(solves) : 0.0;
-  if (poses.size() > 10 && fastnorm_example::allocation_count() >= 0) {
-    run.allocations_per_step = static_cast<double>(model_allocations) / static_cast<double>(poses.size() - 10);
-    run.allocating_steps = allocating_steps;
-  }
+  run.allocations_per_step = allocations.per_step(poses.size());
+  run.allocating_steps = allocations.steps_allocating(poses.size());
   return run;
 }
 
@@ -349,7 +366,8 @@ inline void bench_trial_steps(const wr::Track& track, const wr::Wheelset& wheels
   wr::WheelsetContact<> tried(track, wheelset, parsed.options()), plain(track, wheelset, parsed.options());
   wr::WheelsetContact<>::History saved;
   std::vector<double> history_seconds, trial_seconds, restore_seconds, step_seconds;
-  long allocations = 0, allocating_steps = 0, differing_steps = 0;
+  StepAllocations allocations;
+  long differing_steps = 0;
   using Clock = std::chrono::steady_clock;
   const auto seconds = [](Clock::time_point from, Clock::time_point to) {
     return std::chrono::duration<double>(to - from).count();
@@ -361,7 +379,7 @@ inline void bench_trial_steps(const wr::Track& track, const wr::Wheelset& wheels
       trial.y = (trial.y + next.y) / 2, trial.z = (trial.z + next.z) / 2;
       trial.roll = (trial.roll + next.roll) / 2, trial.yaw = (trial.yaw + next.yaw) / 2;
     }
-    const long before = fastnorm_example::allocation_count();
+    allocations.start();
     const auto start = Clock::now();
     tried.history(saved);
     const auto taken = Clock::now();
@@ -371,25 +389,19 @@ inline void bench_trial_steps(const wr::Track& track, const wr::Wheelset& wheels
     const auto restored = Clock::now();
     const auto& result = tried.evaluate(poses[step]);
     const auto done = Clock::now();
-    if (step >= 10) {
-      const long count = fastnorm_example::allocation_count() - before;
-      allocations += count;
-      allocating_steps += count > 0 ? 1 : 0;
-    }
+    allocations.stop(step);
     history_seconds.push_back(seconds(start, taken));
     trial_seconds.push_back(seconds(taken, tried_at));
     restore_seconds.push_back(seconds(tried_at, restored));
     step_seconds.push_back(seconds(restored, done));
     differing_steps += result.force == plain.evaluate(poses[step]).force ? 0 : 1;
   }
-  const bool counted = poses.size() > 10 && fastnorm_example::allocation_count() >= 0;
   std::printf("trial_steps solver=%s steps=%zu history_us=%.1f trial_us=%.1f restore_us=%.1f step_us=%.1f "
               "allocations_per_step=%.2f allocating_steps=%ld differing_steps=%ld\n",
               parsed.label().c_str(), poses.size(), 1e6 * quantile(history_seconds, 0.5),
               1e6 * quantile(trial_seconds, 0.5), 1e6 * quantile(restore_seconds, 0.5),
               1e6 * quantile(step_seconds, 0.5),
-              counted ? static_cast<double>(allocations) / static_cast<double>(poses.size() - 10) : -1.0,
-              counted ? allocating_steps : -1L, differing_steps);
+              allocations.per_step(poses.size()), allocations.steps_allocating(poses.size()), differing_steps);
   std::fflush(stdout);
 }
 

@@ -145,6 +145,7 @@ class GapSampler {
     } else {
       samples_ = other.samples_;
     }
+    // Every other member as it is (a member added to the class is added here).
     track_id_ = other.track_id_, wheelset_id_ = other.wheelset_id_;
     rail_first_y_ = other.rail_first_y_, rail_last_y_ = other.rail_last_y_;
     side_ = other.side_, step_ = other.step_;
