@@ -18,6 +18,12 @@ namespace {
 
 const fastnorm::Material<> steel(2.1e11, 0.3);
 
+// A random symmetric positive definite matrix of n × n (Cholesky tests).
+Eigen::MatrixXd positive_definite(Eigen::Index n) {
+  const Eigen::MatrixXd b = Eigen::MatrixXd::Random(n, n);
+  return b * b.transpose() + Eigen::MatrixXd::Identity(n, n);
+}
+
 // Never fewer elements than functions: every segment keeps one unknown per element, so
 // the reduced solver must reproduce full NORM.
 struct IdentityBasis : fastnorm::CoordinateBasis<IdentityBasis> {
@@ -80,10 +86,6 @@ TEST_CASE("A factorisation continued from a kept leading factor is the factorisa
   // unknowns and computes the rest (detail/in_place_cholesky.hpp): checked against Eigen's
   // LLT of the whole matrix, for every size of the kept part; at 300 unknowns the update
   // runs in several tiles of rows and columns (kept 70: 64, kept 150 and 299: 54 and 27).
-  const auto positive_definite = [](Eigen::Index n) {
-    const Eigen::MatrixXd b = Eigen::MatrixXd::Random(n, n);
-    return Eigen::MatrixXd(b * b.transpose() + Eigen::MatrixXd::Identity(n, n));
-  };
   for (const auto& [n, kept_sizes] : {std::pair<Eigen::Index, std::vector<Eigen::Index>>{23, {0, 1, 7, 22, 23}},
                                       std::pair<Eigen::Index, std::vector<Eigen::Index>>{300, {70, 150, 299}}}) {
     const Eigen::MatrixXd matrix = positive_definite(n);
@@ -114,6 +116,31 @@ TEST_CASE("A factorisation continued from a kept leading factor is the factorisa
   cholesky.matrix().topLeftCorner(7, 7) = reference.topLeftCorner(7, 7);
   CHECK_FALSE(cholesky.factorise_from(7));
   CHECK_FALSE(cholesky.factored());
+}
+
+TEST_CASE("A factor copied by its lower triangle solves as the original, bit for bit", "[reduced]") {
+  // WheelsetContact's trial steps copy Galerkin systems and factors by their lower triangles
+  // (GalerkinMemory's copy): the upper triangle of the target keeps whatever it held.
+  const Eigen::Index n = 37;
+  const Eigen::MatrixXd matrix = positive_definite(n);
+  fastnorm::detail::InPlaceCholesky<double> original, copy;
+  original.resize(n);
+  original.matrix() = matrix;
+  REQUIRE(original.factorise());
+  copy.resize(n + 5);
+  copy.matrix().setConstant(std::numeric_limits<double>::quiet_NaN());  // stale storage, larger
+  copy.assign_lower(original);
+  REQUIRE(copy.factored());
+  REQUIRE(copy.factor().rows() == n);
+  const Eigen::MatrixXd lower = original.factor().triangularView<Eigen::Lower>();
+  CHECK(Eigen::MatrixXd(copy.factor().triangularView<Eigen::Lower>()) == lower);
+  CHECK(copy.factor().triangularView<Eigen::StrictlyUpper>().toDenseMatrix().hasNaN());  // not copied
+  const Eigen::VectorXd rhs = Eigen::VectorXd::LinSpaced(n, -1.0, 2.0);
+  Eigen::VectorXd from_original = rhs, from_copy = rhs;
+  original.solve_in_place(from_original);
+  copy.solve_in_place(from_copy);
+  CHECK(from_copy == from_original);
+  CHECK_FALSE(from_copy.hasNaN());
 }
 
 TEST_CASE("A new Galerkin assembly starts at the largest size recycled", "[reduced]") {

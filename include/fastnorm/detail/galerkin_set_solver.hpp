@@ -120,7 +120,13 @@ struct GalerkinMemory {
       to[k].segments.reserve(from[k].segments.capacity());
       to[k].order.reserve(from[k].order.capacity());
       to[k].offsets.reserve(from[k].offsets.capacity());
-      to[k] = from[k];
+      // Every member of an Assembly (one added to it is added here); of the system and its
+      // factor the lower triangles, all that store_block writes and the solves read.
+      to[k].segments = from[k].segments;
+      to[k].order = from[k].order;
+      to[k].offsets = from[k].offsets;
+      to[k].matrix.assign_lower(from[k].matrix);
+      to[k].cholesky.assign_lower(from[k].cholesky);
     }
   }
   /// No set to look up any more (another solver's, or a cold start): every assembly

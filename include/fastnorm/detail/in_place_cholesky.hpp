@@ -73,6 +73,12 @@ class InPlaceCholesky {
     return factored_;
   }
   bool factored() const { return factored_; }
+  /// A copy of `other`: its lower triangle, the matrix or the factor (the upper one is never
+  /// read), and whether it is factorised.
+  void assign_lower(const InPlaceCholesky& other) {
+    storage_.assign_lower(other.storage_);
+    factored_ = other.factored_;
+  }
   /// The factor L (lower triangle) after a successful factorise.
   Eigen::Map<const Matrix> factor() const { return storage_.view(); }
 

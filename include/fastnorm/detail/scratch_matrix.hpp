@@ -33,6 +33,18 @@ class ScratchMatrix {
   ScratchMatrix& operator=(ScratchMatrix&&) noexcept = default;
   ~ScratchMatrix() = default;
 
+  /// A copy of `other`'s lower triangle (its diagonal and below) into this storage, with
+  /// its view's size; the values above the diagonal are left undefined. What a symmetric
+  /// system or a Cholesky factor that is read by its lower triangle only needs copied: half
+  /// the values of a square view.
+  void assign_lower(const ScratchMatrix& other) {
+    if (this == &other) return;
+    resize(other.rows_, other.cols_);
+    for (Index column = 0; column < cols_; ++column) {
+      const Index first = std::min(column, rows_), at = column * rows_ + first;
+      std::copy_n(other.values_.data() + at, static_cast<std::size_t>(rows_ - first), values_.data() + at);
+    }
+  }
   /// A rows × cols view of the storage, grown if needed; contents undefined.
   Eigen::Map<Matrix> resize(Index rows, Index cols) {
     rows_ = rows;
