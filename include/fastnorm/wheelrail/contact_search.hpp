@@ -63,19 +63,31 @@ struct ContactRegion {
   double weight = 0;              ///< total weight (for merging)
 };
 
+namespace detail {
+
+/// The gap at the locus point `wheel`, the rail's height below it from
+/// `rail_height(y_track)` → std::optional<ProfileValue<double>>.
+template <typename RailHeight>
+GapSample gap_below(const Wheelset::LocusPoint& wheel, const RailHeight& rail_height) {
+  GapSample sample;
+  sample.wheel = wheel;
+  if (const auto rail = rail_height(wheel.point.y())) {
+    sample.rail_z = rail->value;
+    sample.rail_slope = rail->slope;
+    sample.gap = rail->value - wheel.point.z();
+  }
+  return sample;
+}
+
+}  // namespace detail
+
 /// The gap between `side`'s wheel and rail at wheel profile coordinate y_w, with the pose's
 /// rotation and tan ψ given. `rail_y` may hold the rail profile coordinate of a nearby
 /// sample to start from (Track::rail_height) and receives this one's.
 inline GapSample gap_at(const Track& track, const Wheelset& wheelset, Side side, double profile_y,
                         const WheelsetPose& pose, const Eigen::Matrix3d& rotation, double tan_yaw, double& rail_y) {
-  GapSample sample;
-  sample.wheel = wheelset.locus(side, profile_y, pose, rotation, tan_yaw);
-  if (const auto rail = track.rail_height(side, sample.wheel.point.y(), rail_y)) {
-    sample.rail_z = rail->value;
-    sample.rail_slope = rail->slope;
-    sample.gap = rail->value - sample.wheel.point.z();
-  }
-  return sample;
+  return detail::gap_below(wheelset.locus(side, profile_y, pose, rotation, tan_yaw),
+                           [&](double y) { return track.rail_height(side, y, rail_y); });
 }
 
 /// The same, from no nearby sample.
@@ -174,8 +186,9 @@ class GapSampler {
     const double tan_yaw = std::tan(pose.yaw);
     auto take = [&](std::size_t k) {
       double guess = std::isfinite(rail_y_before) ? 2 * rail_y - rail_y_before : rail_y;
-      samples_[k] =
-          gap_at(track, wheelset, side, detail::sample_y(profile, options.step, k), pose, rotation, tan_yaw, guess);
+      samples_[k] = detail::gap_below(
+          wheelset.locus(side, detail::sample_y(profile, options.step, k), pose, rotation, tan_yaw),
+          [&](double y) { return track.rail_height_tabulated(side, y, guess); });
       rail_y_before = rail_y;
       rail_y = guess;
     };

@@ -6,12 +6,14 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <memory>
 #include <optional>
 #include <utility>
 
 #include "fastnorm/detail/object_id.hpp"
 #include "fastnorm/error.hpp"
 #include "fastnorm/wheelrail/profile_curve.hpp"
+#include "fastnorm/wheelrail/rail_table.hpp"
 
 namespace fastnorm::wheelrail {
 
@@ -71,6 +73,13 @@ class Track {
     // Where the right rail profile begins and ends across the track (y increases with y_r).
     first_y_ = canted_y(rail_.y_min()) + shift_y_;
     last_y_ = canted_y(rail_.y_max()) + shift_y_;
+    table_ = std::make_shared<const RailTable>(
+        [this](double y, double& profile_y) -> std::optional<RailSample> {
+          const auto height = rail_height(Side::right, y, profile_y);
+          if (!height) return std::nullopt;
+          return RailSample{height->value, height->slope, profile_y};
+        },
+        first_y_, last_y_);
   }
 
   /// This track's identity: a number no other track of the process has; a copy keeps it (the
@@ -102,6 +111,22 @@ class Track {
     const auto surface = right_rail(*y_r);
     return ProfileValue<double>{surface.z, sign * surface.slope};
   }
+
+  /// The same from the track's RailTable where it vouches for y (within 1e-13 m in height
+  /// and 1e-10 in slope), exactly elsewhere: what the contact search's samples take
+  /// (docs/wheel-rail.md §4, item 3). `profile_y` receives y_r, interpolated linearly where
+  /// the table answered (a start for the next exact evaluation nearby, not a value).
+  std::optional<ProfileValue<double>> rail_height_tabulated(Side side, double y, double& profile_y) const {
+    const double sign = side_sign(side);
+    if (const auto tabulated = table_->at(sign * y)) {
+      profile_y = tabulated->profile_y;
+      return ProfileValue<double>{tabulated->height, sign * tabulated->slope};
+    }
+    return rail_height(side, y, profile_y);
+  }
+
+  /// The right rail's table (shared by the track's copies; it never changes).
+  const RailTable& rail_table() const { return *table_; }
 
   /// Distance t (m) along the unit direction (dir_y, dir_z) from (y, z) to the rail surface on
   /// `side` (a 2-D intersection: the rail is prismatic); empty if the line misses the profile.
@@ -179,6 +204,7 @@ class Track {
   double cos_ = 1, sin_ = 0;
   double shift_y_ = 0, shift_z_ = 0;
   double first_y_ = 0, last_y_ = 0;  // y of the right rail's first and last profile points
+  std::shared_ptr<const RailTable> table_;  // Z and Z' of the right rail, for the contact search
 };
 
 }  // namespace fastnorm::wheelrail
