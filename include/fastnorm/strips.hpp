@@ -53,18 +53,21 @@ Eigen::Matrix<Scalar, Eigen::Dynamic, 1> segment_coordinates(Eigen::Index count)
 template <typename Scalar>
 void segment_strips(const Grid<Scalar>& grid, const std::vector<Eigen::Index>& set, std::vector<Segment>& segments) {
   segments.clear();
-  Eigen::Index strip_end = 0;  // one past the last element of the current segment's strip
-  for (std::size_t position = 0; position < set.size(); ++position) {
+  const std::size_t size = set.size();
+  std::size_t position = 0;
+  while (position < size) {
     const Eigen::Index k = set[position];
     FASTNORM_CHECK(k >= 0 && k < grid.size(), detail::describe("segment_strips: element out of the grid", k));
     FASTNORM_CHECK(position == 0 || set[position - 1] < k, "segment_strips: set must be sorted and unique");
-    if (position > 0 && set[position - 1] == k - 1 && k < strip_end) {
-      ++segments.back().count;  // continues the run in its strip
-    } else {
-      const Eigen::Index j = grid.j_of(k);  // a division per segment, not per element
-      strip_end = (j + 1) * grid.mx();
-      segments.push_back(Segment{j, k - j * grid.mx(), 1, static_cast<Eigen::Index>(position)});
-    }
+    const Eigen::Index j = grid.j_of(k);  // a division per segment, not per element
+    const Eigen::Index strip_end = (j + 1) * grid.mx();
+    // The run continues while each element follows its predecessor within the strip (such
+    // an element is in range and in order, so only a segment's first needs the checks).
+    std::size_t end = position + 1;
+    while (end < size && set[end] == set[end - 1] + 1 && set[end] < strip_end) ++end;
+    segments.push_back(Segment{j, k - j * grid.mx(), static_cast<Eigen::Index>(end - position),
+                               static_cast<Eigen::Index>(position)});
+    position = end;
   }
 }
 
