@@ -5,6 +5,7 @@
 #include <fastnorm/hertz.hpp>
 #include <fastnorm/norm_solver.hpp>
 #include <fastnorm/reduced_solver.hpp>
+#include <cmath>
 #include <limits>
 #include <utility>
 #include <vector>
@@ -116,6 +117,75 @@ TEST_CASE("A factorisation continued from a kept leading factor is the factorisa
   cholesky.matrix().topLeftCorner(7, 7) = reference.topLeftCorner(7, 7);
   CHECK_FALSE(cholesky.factorise_from(7));
   CHECK_FALSE(cholesky.factored());
+}
+
+TEST_CASE("A rank update of a factor's trailing rows is the factor of the updated matrix", "[reduced]") {
+  // A set that drops unknowns keeps the other rows of the previous factor and adds back the
+  // dropped columns' outer products by rank-one updates (GalerkinSetSolver::factorise):
+  // checked against Eigen's LLT of A + v vᵀ, for updates from the first row and from inside,
+  // on the whole storage and on its leading block, and chained a thousand times.
+  const Eigen::Index n = 23;
+  const Eigen::MatrixXd matrix = positive_definite(n);
+  for (const auto& [first, size] : {std::pair<Eigen::Index, Eigen::Index>{0, n}, {9, n}, {9, 17}, {16, 17}}) {
+    INFO("first " << first << ", size " << size);
+    Eigen::VectorXd v = Eigen::VectorXd::Zero(size);
+    v.tail(size - first) = Eigen::VectorXd::LinSpaced(size - first, 0.7, -1.3);
+    v(size - 1) = 0.0;  // a zero entry leaves its column as it is
+    const Eigen::MatrixXd updated = matrix.topLeftCorner(size, size) + v * v.transpose();
+    const Eigen::MatrixXd reference = Eigen::LLT<Eigen::MatrixXd>(updated).matrixL();
+    fastnorm::detail::InPlaceCholesky<double> cholesky;
+    cholesky.resize(n);
+    cholesky.matrix() = matrix;
+    REQUIRE(cholesky.factorise());
+    Eigen::VectorXd work = v.tail(size - first);
+    cholesky.update_rank(first, size, work);
+    const Eigen::MatrixXd factor = cholesky.factor().topLeftCorner(size, size).triangularView<Eigen::Lower>();
+    CHECK((factor - reference).cwiseAbs().maxCoeff() <= 1e-13 * reference.cwiseAbs().maxCoeff());
+    // Rows past the block are not touched.
+    if (size < n) {
+      const Eigen::MatrixXd untouched = Eigen::LLT<Eigen::MatrixXd>(matrix).matrixL();
+      const Eigen::MatrixXd lower = cholesky.factor().triangularView<Eigen::Lower>();
+      CHECK((lower.bottomRows(n - size) - untouched.bottomRows(n - size)).cwiseAbs().maxCoeff() <=
+            1e-13 * untouched.cwiseAbs().maxCoeff());
+    }
+  }
+  // Several vectors at once, zero above different rows, as the dropped unknowns of a set.
+  {
+    Eigen::MatrixXd vectors = Eigen::MatrixXd::Zero(n - 4, 3);
+    for (Eigen::Index k = 0; k < 3; ++k) {
+      for (Eigen::Index i = 2 * k; i < n - 4; ++i) vectors(i, k) = std::cos(0.3 * static_cast<double>(i + 5 * k));
+    }
+    const Eigen::MatrixXd updated = matrix + [&] {
+      Eigen::MatrixXd padded = Eigen::MatrixXd::Zero(n, 3);
+      padded.bottomRows(n - 4) = vectors;
+      return Eigen::MatrixXd(padded * padded.transpose());
+    }();
+    const Eigen::MatrixXd reference = Eigen::LLT<Eigen::MatrixXd>(updated).matrixL();
+    fastnorm::detail::InPlaceCholesky<double> cholesky;
+    cholesky.resize(n);
+    cholesky.matrix() = matrix;
+    REQUIRE(cholesky.factorise());
+    cholesky.update_rank(4, n, vectors);
+    const Eigen::MatrixXd factor = cholesky.factor().triangularView<Eigen::Lower>();
+    CHECK((factor - reference).cwiseAbs().maxCoeff() <= 1e-13 * reference.cwiseAbs().maxCoeff());
+  }
+  // A thousand updates in a row, each by a different vector: the factor stays the one of
+  // the sum to round-off (no drift a time loop's chains of updates would feel).
+  fastnorm::detail::InPlaceCholesky<double> cholesky;
+  cholesky.resize(n);
+  cholesky.matrix() = matrix;
+  REQUIRE(cholesky.factorise());
+  Eigen::MatrixXd sum = matrix;
+  for (int k = 0; k < 1000; ++k) {
+    const Eigen::Index first = k % n;
+    Eigen::VectorXd v = Eigen::VectorXd::Zero(n);
+    for (Eigen::Index i = first; i < n; ++i) v(i) = 0.01 * std::sin(0.37 * static_cast<double>(k + 3 * i));
+    sum += v * v.transpose();
+    Eigen::VectorXd work = v.tail(n - first);
+    cholesky.update_rank(first, n, work);
+  }
+  const Eigen::MatrixXd factor = cholesky.factor().triangularView<Eigen::Lower>();
+  CHECK((factor * factor.transpose() - sum).norm() <= 1e-14 * sum.norm());
 }
 
 TEST_CASE("A factor copied by its lower triangle solves as the original, bit for bit", "[reduced]") {

@@ -34,6 +34,7 @@ struct GalerkinMemory {
     std::vector<Index> offsets;      // first unknown of each segment
     ScratchMatrix<Scalar> matrix;    // Aᵀ C_II A, its lower triangle (store_block)
     InPlaceCholesky<Scalar> cholesky;
+    int factor_updates = 0;          // rank-one updates its factor's rows carry (factorise)
     Index unknowns() const { return matrix.rows(); }
   };
   std::vector<Assembly> path;       // the sets of this solve
@@ -47,7 +48,8 @@ struct GalerkinMemory {
     Index next_offset, previous_offset, size;
   };
   std::vector<SurvivorRun> survivor_runs;
-  ScratchMatrix<Scalar> coupling, times_basis, block_entries, reduced_rhs, coefficients;
+  std::vector<Index> survivor_unknowns;  // kept unknowns past the leading ones: rows of the previous factor
+  ScratchMatrix<Scalar> dropped_columns, coupling, times_basis, block_entries, reduced_rhs, coefficients;
   std::size_t system_capacity = 0;  // values of the largest matrix or factor recycled
 
   GalerkinMemory() = default;
@@ -74,6 +76,7 @@ struct GalerkinMemory {
   void reserve(std::size_t segment_count, std::size_t set_count) {
     for (auto* list : {&segments, &target_runs}) list->reserve(segment_count);
     for (auto* list : {&old_index, &new_index}) list->reserve(segment_count);
+    survivor_unknowns.reserve(segment_count);
     direct.reserve(segment_count);
     survivor_runs.reserve(segment_count);
     for (auto* assemblies : {&path, &last_path}) assemblies->reserve(set_count);
@@ -127,6 +130,7 @@ struct GalerkinMemory {
       to[k].offsets = from[k].offsets;
       to[k].matrix.assign_lower(from[k].matrix);
       to[k].cholesky.assign_lower(from[k].cholesky);
+      to[k].factor_updates = from[k].factor_updates;
     }
   }
   /// No set to look up any more (another solver's, or a cold start): every assembly
@@ -188,9 +192,9 @@ class GalerkinSetSolver {
       const Assembly* previous = !memory_.path.empty() ? &memory_.path.back()
                                  : !last_path.empty()  ? &last_path.back()
                                                        : nullptr;
-      const Index kept = order_unknowns(next, previous);
+      const Index leading = order_unknowns(next, previous);
       assemble(next, previous);
-      factorise(next, previous, kept);
+      factorise(next, previous, leading);
     }
     memory_.path.push_back(std::move(next));
     return solve_with(memory_.path.back(), columns);
@@ -301,7 +305,8 @@ class GalerkinSetSolver {
   /// factor are kept, then its other segments that `previous` holds, in `previous`'s order,
   /// then its new ones. A segment that changes thus moves to the end, and since the
   /// active-set loop moves the same few strip ends back and forth, the kept part is most
-  /// of the system. Returns the number of kept unknowns (0 if `previous` has no factor).
+  /// of the system. Returns the number of leading kept unknowns, those before the first
+  /// one `previous` held and `next` dropped (0 if `previous` has no factor).
   Index order_unknowns(Assembly& next, const Assembly* previous) {
     auto& old_index = memory_.old_index;  // per segment of next: its index in previous, or −1
     auto& new_index = memory_.new_index;  // per segment of previous: its index in next, or −1
@@ -336,21 +341,114 @@ class GalerkinSetSolver {
     return kept;
   }
 
-  /// The Cholesky factor of `next`: the leading `kept` × `kept` block of `previous`'s
-  /// factor (the same leading unknowns and matrix entries), the rest computed from it.
-  void factorise(Assembly& next, const Assembly* previous, Index kept) {
-    const Index n = next.unknowns(), rest = n - kept;
+  /// The Cholesky factor of `next` (docs/method.md §3, "Reuse of the factor" and "Dropped
+  /// unknowns by rank updates"). The unknowns that `previous` holds too come first, in its
+  /// order. The leading `leading` of them (up to the first unknown that `next` dropped) have
+  /// `previous`'s rows of the factor as they are. Where updating_pays, the rows of the other
+  /// kept unknowns are `previous`'s restricted to the kept unknowns, updated by the dropped
+  /// unknowns' columns restricted to the kept rows (restricted to them, L Lᵀ is the kept
+  /// block minus those columns' outer products: InPlaceCholesky::update_rank adds them
+  /// back); otherwise they are computed with the new unknowns' rows (factorise_from).
+  /// Updates carry round-off from factor to factor along a sequence, so a factor that would
+  /// carry more than `update_limit` of them is computed afresh.
+  void factorise(Assembly& next, const Assembly* previous, Index leading) {
+    const Index n = next.unknowns();
     next.cholesky.resize(n);
     auto factor = next.cholesky.matrix();
     const auto matrix = next.matrix.view();
+    // The kept unknowns past the leading ones, as rows of previous's factor (increasing).
+    auto& rows = memory_.survivor_unknowns;
+    rows.clear();
+    Index dropped = 0;
+    if (previous != nullptr && previous->cholesky.factored()) {
+      for (const Index s : next.order) {
+        const auto segment = static_cast<std::size_t>(s);
+        const Index old = memory_.old_index[segment];
+        if (old < 0) break;  // the new segments come last
+        if (next.offsets[segment] < leading) continue;
+        const Index from = previous->offsets[static_cast<std::size_t>(old)];
+        for (Index u = 0; u < unknowns_of(next.segments[segment].count); ++u) rows.push_back(from + u);
+      }
+      dropped = previous->unknowns() - leading - static_cast<Index>(rows.size());
+    }
+    const int carried = leading > 0 || !rows.empty() ? previous->factor_updates : 0;
+    const bool afresh = !rows.empty() && carried + dropped > update_limit;  // ends the chain
+    const bool update = !rows.empty() && !afresh && updating_pays(n, leading, rows, previous->unknowns());
+    Index kept = afresh ? 0 : leading;
     if (kept > 0) {
       factor.topLeftCorner(kept, kept).template triangularView<Eigen::Lower>() =
           previous->cholesky.factor().topLeftCorner(kept, kept);
     }
+    if (update) {
+      const auto old = previous->cholesky.factor();
+      const auto count = static_cast<Index>(rows.size());
+      for (Index c = 0; c < leading; ++c) {
+        for (Index r = 0; r < count; ++r) factor(leading + r, c) = old(rows[static_cast<std::size_t>(r)], c);
+      }
+      for (Index c = 0; c < count; ++c) {
+        const Index column = rows[static_cast<std::size_t>(c)];
+        for (Index r = c; r < count; ++r) factor(leading + r, leading + c) = old(rows[static_cast<std::size_t>(r)], column);
+      }
+      // V: per dropped unknown with kept rows below it, its column restricted to them.
+      auto dropped_columns = memory_.dropped_columns.resize(count, dropped);
+      Index columns = 0, first_below = count;
+      for_dropped(leading, rows, previous->unknowns(), [&](Index d, Index first) {
+        auto column = dropped_columns.col(columns++);
+        column.head(first).setZero();
+        for (Index r = first; r < count; ++r) column(r) = old(rows[static_cast<std::size_t>(r)], d);
+        first_below = std::min(first_below, first);
+      });
+      if (columns > 0) {
+        next.cholesky.update_rank(leading + first_below, leading + count,
+                                  dropped_columns.block(first_below, 0, count - first_below, columns));
+      }
+      kept = leading + count;
+    }
+    next.factor_updates = kept > 0 ? carried + (update ? static_cast<int>(dropped) : 0) : 0;
+    const Index rest = n - kept;
     factor.bottomLeftCorner(rest, kept) = matrix.bottomLeftCorner(rest, kept);
     factor.bottomRightCorner(rest, rest).template triangularView<Eigen::Lower>() = matrix.bottomRightCorner(rest, rest);
     next.cholesky.factorise_from(kept);
   }
+
+  /// visit(d, first) for each unknown d ≥ `leading` of a previous factor of `unknowns`
+  /// unknowns that `rows` (the kept ones past the leading, increasing) does not hold and
+  /// that has kept rows below it, the first of them rows[first].
+  template <typename Visit>
+  static void for_dropped(Index leading, const std::vector<Index>& rows, Index unknowns, const Visit& visit) {
+    const auto count = static_cast<Index>(rows.size());
+    Index first = 0;  // the first kept row after d
+    for (Index d = leading; d < unknowns; ++d) {
+      while (first < count && rows[static_cast<std::size_t>(first)] < d) ++first;
+      if (first == count) return;  // no kept row below: it changes nothing
+      if (rows[static_cast<std::size_t>(first)] != d) visit(d, first);
+    }
+  }
+
+  /// Whether updating the kept rows (factorise) costs less than computing every row after
+  /// the leading ones from the matrix. Flops: a rank-one update of m rows about 2m², the
+  /// rows computed after k kept ones of n (factorise_from) (n − k)k² + (n − k)²k + (n − k)³/3,
+  /// an update's flop weighted `update_weight` against those of Eigen's blocked products
+  /// (weights of 1 and 8 timed within the noise of 3, docs/performance.md §8).
+  static bool updating_pays(Index n, Index leading, const std::vector<Index>& rows, Index previous_unknowns) {
+    const auto count = static_cast<Index>(rows.size());
+    double updates = 0;
+    for_dropped(leading, rows, previous_unknowns, [&](Index, Index first) {
+      const auto m = static_cast<double>(count - first);
+      updates += 2 * m * m;
+    });
+    const auto computed = [n](Index kept) {
+      const auto rest = static_cast<double>(n - kept), k = static_cast<double>(kept);
+      return rest * k * k + rest * rest * k + rest * rest * rest / 3;
+    };
+    return update_weight * updates + computed(leading + count) < computed(leading);
+  }
+
+  /// Most rank-one updates a factor's rows may carry (factorise): chains of about 2 000 were
+  /// measured at round-off (docs/method.md §3, "Dropped unknowns by rank updates").
+  static constexpr int update_limit = 1000;
+  /// The cost of an update's flop in flops of Eigen's products (updating_pays).
+  static constexpr double update_weight = 3;
 
   /// Block (t, s) of an assembly, A_tᵀ C_ts A_s (t's unknowns down, s's across), as the
   /// assembly stores it: only the lower triangle is kept (all the factorisation reads), so

@@ -7,6 +7,7 @@
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
 #include <algorithm>
+#include <cmath>
 
 #include "fastnorm/detail/scratch_matrix.hpp"
 
@@ -71,6 +72,34 @@ class InPlaceCholesky {
       factored_ = llt.info() == Eigen::Success;
     }
     return factored_;
+  }
+  /// The factor L of the leading `size` × `size` block of matrix() replaced, from row
+  /// `first` on, by the factor of L Lᵀ + V Vᵀ, where the columns of V (rows [first, size),
+  /// overwritten) are zero above `first`: rows and columns before `first` do not change.
+  /// Written by hand because Eigen's LLT::rankUpdate takes a whole factor, one vector at a
+  /// time, and allocates a temporary vector at every call (Eigen/src/Cholesky/LLT.h), which
+  /// the time loop must not. The rank-one update of Golub and Van Loan (§6.5.4), for each
+  /// column v of V in turn: r = √(L_ii² + v_i²), c = r/L_ii, s = v_i/L_ii, L_ji ← (L_ji +
+  /// s v_j)/c, v_j ← c v_j − s L_ji for j > i. Column i of the k-th update needs only
+  /// column i after the first k − 1 updates, so all of them are applied to a column before
+  /// the next: one pass over the factor instead of one per column of V.
+  template <typename Vectors>
+  void update_rank(Index first, Index size, Vectors&& vectors) {
+    Eigen::Map<Matrix> values = storage_.view();
+    for (Index i = first; i < size; ++i) {
+      const Index below = size - i - 1;
+      auto column = values.col(i).segment(i + 1, below);
+      for (Index k = 0; k < vectors.cols(); ++k) {
+        const Scalar diagonal = values(i, i), vi = vectors(i - first, k);
+        if (vi == Scalar(0)) continue;  // this update leaves the column as it is
+        const Scalar root = std::sqrt(diagonal * diagonal + vi * vi);
+        const Scalar c = root / diagonal, s = vi / diagonal, inverse_c = diagonal / root;
+        values(i, i) = root;
+        auto rest = vectors.col(k).segment(i + 1 - first, below);
+        column = inverse_c * (column + s * rest);
+        rest = c * rest - s * column;
+      }
+    }
   }
   bool factored() const { return factored_; }
   /// A copy of `other`: its lower triangle, the matrix or the factor (the upper one is never
