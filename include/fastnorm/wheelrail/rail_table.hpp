@@ -92,7 +92,6 @@ class RailTable {
                  std::abs(truth->slope - tabulated.slope) <= slope_tolerance / 2;
       }
       intervals_[i].vouched = agrees;
-      vouched_ += agrees;
     }
   }
 
@@ -109,7 +108,10 @@ class RailTable {
 
   /// How many intervals the table has, and how many of them answer.
   std::size_t intervals() const { return intervals_.size(); }
-  std::size_t vouched() const { return vouched_; }
+  std::size_t vouched() const {
+    return static_cast<std::size_t>(
+        std::count_if(intervals_.begin(), intervals_.end(), [](const Interval& interval) { return interval.vouched; }));
+  }
 
  private:
   struct Interval {
@@ -128,7 +130,6 @@ class RailTable {
 
   double first_ = 0;
   std::vector<Interval> intervals_;
-  std::size_t vouched_ = 0;
 };
 
 }  // namespace fastnorm::wheelrail
