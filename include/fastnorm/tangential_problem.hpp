@@ -54,7 +54,8 @@ struct TangentialSolution {
   Scalar frictional_power_per_speed = 0;
   int sweeps = 0;       ///< of the elements from the leading edge (1 for the simplified theory)
   /// The last sweep's traction changes by the exact path's stopping rule (TangentialStop):
-  /// the largest / (μ·max p_n), or their root mean square / the tractions'; 0 for the
+  /// the largest / (μ·max p_n), or their root mean square / the tractions', times ρ/1.5
+  /// once a restart has raised the relaxation ρ (docs/tangential.md §7); 0 for the
   /// simplified theory.
   Scalar residual = 0;
   bool ok() const { return status == Status::converged; }

@@ -41,7 +41,9 @@ enum class TangentialStop {
 template <typename Scalar = double>
 struct TangentialOptions {
   /// The sweeps stop when the measure `stop` of a sweep's traction changes is at most this.
-  Scalar tolerance = Scalar(1e-9);
+  /// The default is 1e-9, or 32 ε of Scalar where that is larger (3.8e-6 for float, whose
+  /// sweeps cannot change the tractions by less than their round-off).
+  Scalar tolerance = std::max(Scalar(1e-9), 32 * std::numeric_limits<Scalar>::epsilon());
   TangentialStop stop = TangentialStop::largest_change;
   int max_sweeps = 2000;
   void validate() const {
@@ -404,8 +406,12 @@ class SteadyRollingSolver {
     // A sweep whose largest change grows tenfold past the smallest met, or a smallest change
     // that does not halve in 40 sweeps, restarts the solve from zero with ρ 1.5 times larger
     // (whichever rule stops the sweeps).
+    // A sweep relaxed by ρ moves the tractions by about 1/ρ of its unrelaxed step, so the
+    // measure of its changes is taken times ρ/ρ₀: a restarted, more relaxed solve must not
+    // stop merely because its steps are shorter.
     const Scalar own_x = rolling.xx(mx, my - 1), own_y = rolling.yy(mx, my - 1);
-    Scalar relaxation = Scalar(1.5);
+    const Scalar first_relaxation = Scalar(1.5);
+    Scalar relaxation = first_relaxation;
     detail::AndersonMixing<Scalar> mixing(iterate.size(), 2 * n, 6);
     Vector before(2 * n), residual(2 * n);
     Scalar smallest_change = std::numeric_limits<Scalar>::infinity(), checkpoint_change = smallest_change;
@@ -446,6 +452,7 @@ class SteadyRollingSolver {
         const Scalar size = tractions.norm();
         answer.residual = size > 0 ? residual.norm() / size : Scalar(0);
       }
+      answer.residual *= relaxation / first_relaxation;
       converged = answer.residual <= options_.tolerance;
       if (converged) break;
       smallest_change = std::min(smallest_change, largest_change);

@@ -9,6 +9,7 @@
 #include <fastnorm/case_file.hpp>
 #include <fastnorm/norm_solver.hpp>
 #include <fastnorm/tangential_solver.hpp>
+#include <limits>
 #include <map>
 #include <string>
 #include <vector>
@@ -64,6 +65,40 @@ std::vector<std::map<std::string, std::string>> exact_rows(const std::string& so
     if (row.at("source") == source && row.at("variant") == "exact") selected.push_back(row);
   }
   return selected;
+}
+
+/// The problem in single precision: the same grid, material and NORM pressures, rounded.
+struct FloatProblem {
+  fastnorm::Grid<float> grid;
+  fastnorm::Material<float> material;
+  fastnorm::Solution<float> normal;
+};
+
+FloatProblem in_float(const HertzProblem& problem) {
+  const auto& grid = problem.grid;
+  const auto& material = problem.material;
+  fastnorm::Solution<float> normal;
+  normal.status = problem.normal.status;
+  normal.pressure = problem.normal.pressure.cast<float>();
+  normal.in_contact = problem.normal.in_contact;
+  normal.normal_force = static_cast<float>(problem.normal.normal_force);
+  return {fastnorm::Grid<float>(grid.mx(), grid.my(), static_cast<float>(grid.dx()), static_cast<float>(grid.dy()),
+                                static_cast<float>(grid.x0()), static_cast<float>(grid.y0())),
+          fastnorm::Material<float>(static_cast<float>(material.young_modulus(1)),
+                                    static_cast<float>(material.poisson_ratio(1)),
+                                    static_cast<float>(material.young_modulus(2)),
+                                    static_cast<float>(material.poisson_ratio(2))),
+          std::move(normal)};
+}
+
+fastnorm::Creepage<float> in_float(const fastnorm::Creepage<>& value) {
+  fastnorm::Creepage<float> rounded;
+  rounded.longitudinal = static_cast<float>(value.longitudinal);
+  rounded.lateral = static_cast<float>(value.lateral);
+  rounded.spin = static_cast<float>(value.spin);
+  rounded.spin_centre_x = static_cast<float>(value.spin_centre_x);
+  rounded.spin_centre_y = static_cast<float>(value.spin_centre_y);
+  return rounded;
 }
 
 }  // namespace
@@ -272,6 +307,53 @@ TEST_CASE("CONTACT's stopping rule measures the root mean square of a sweep's ch
     CHECK(answer.slip_elements == reference.slip_elements);
     CHECK(std::abs(answer.force_x - reference.force_x) <= 1e-6 * scale);
     CHECK(std::abs(answer.force_y - reference.force_y) <= 1e-6 * scale);
+  }
+}
+
+TEST_CASE("Steady rolling in single precision converges with its defaults to CONTACT's large-spin case", "[tangential][peer]") {
+  // The default tolerance is 32 ε of float (3.8e-6) where 1e-9 lies below its round-off;
+  // the answer meets the double path's tolerances against CONTACT.
+  const auto rows = exact_rows("fastsim");
+  if (rows.empty()) return fastnorm::test::reference_data_missing("peer-tangential/hertz.tsv");
+  const auto& row = rows.front();
+  const double mm = 1e-3, mu = number(row, "mu"), fn = number(row, "fn_N");
+  const FloatProblem problem = in_float(fastnorm::test::peer_row_problem(row));
+  CHECK(fastnorm::TangentialOptions<float>().tolerance == Approx(32 * std::numeric_limits<float>::epsilon()));
+  const auto answer = fastnorm::SteadyRollingSolver<float>(problem.grid, problem.material)
+                          .solve(problem.normal, static_cast<float>(mu), in_float(fastnorm::test::peer_row_creepage(row)));
+  INFO("Fx " << answer.force_x << " (CONTACT " << row.at("fx_N") << "), Fy " << answer.force_y << " (" << row.at("fs_N")
+             << "), Mz " << answer.spin_moment << " N m, sweeps " << answer.sweeps << ", " << answer.message);
+  REQUIRE(answer.ok());
+  CHECK(answer.sweeps < 200);
+  const double c = std::sqrt(number(row, "aa_mm") * number(row, "bb_mm")) * mm;
+  CHECK(std::abs(static_cast<double>(answer.force_x) - number(row, "fx_N")) <= 0.015 * mu * fn);
+  CHECK(std::abs(static_cast<double>(answer.force_y) - number(row, "fs_N")) <= 0.015 * mu * fn);
+  CHECK(std::abs(static_cast<double>(answer.spin_moment) - number(row, "mn_Nmm") * mm) <= 0.02 * mu * fn * c);
+}
+
+TEST_CASE("A tolerance below the scalar's round-off never ends in a false convergence", "[tangential]") {
+  // In float the sweeps' changes stagnate at round-off above 1e-8: the solve restarts more
+  // relaxed, and its shorter steps must not pass for convergence (docs/tangential.md §7).
+  // Either it stops at the limit, or what it calls converged is the answer.
+  const FloatProblem problem = in_float(small_problem());
+  const auto value = creepage(4e-4, -3e-4, 0.4);
+  const double mu = 0.3, scale = mu * small_problem().normal.normal_force;
+  const auto reference = fastnorm::solve_steady_rolling(small_problem().grid, small_problem().material,
+                                                        small_problem().normal, mu, value);
+  REQUIRE(reference.ok());
+  fastnorm::TangentialOptions<float> options;
+  options.tolerance = 1e-8f;
+  const auto answer = fastnorm::SteadyRollingSolver<float>(problem.grid, problem.material,
+                                                           fastnorm::RollingDirection::positive_x, options)
+                          .solve(problem.normal, static_cast<float>(mu), in_float(value));
+  INFO(answer.message << ", residual " << answer.residual << ", Fx " << answer.force_x << " against "
+                      << reference.force_x);
+  if (answer.ok()) {
+    CHECK(std::abs(static_cast<double>(answer.force_x) - reference.force_x) <= 1e-4 * scale);
+    CHECK(std::abs(static_cast<double>(answer.force_y) - reference.force_y) <= 1e-4 * scale);
+  } else {
+    CHECK(answer.status == fastnorm::Status::iteration_limit);
+    CHECK(answer.residual > options.tolerance);
   }
 }
 
