@@ -405,7 +405,8 @@ class SteadyRollingSolver {
     // (tractions and spectra together: both are linear in p).
     // A sweep whose largest change grows tenfold past the smallest met, or a smallest change
     // that does not halve in 40 sweeps, restarts the solve from zero with ρ 1.5 times larger
-    // (whichever rule stops the sweeps).
+    // (whichever rule stops the sweeps); the iterate it leaves is kept if its measure is the
+    // least met, and returned if the sweeps end unconverged with none better.
     // A sweep relaxed by ρ moves the tractions by about 1/ρ of its unrelaxed step, so the
     // measure of its changes is taken times ρ/ρ₀: a restarted, more relaxed solve must not
     // stop merely because its steps are shorter.
@@ -416,6 +417,9 @@ class SteadyRollingSolver {
     Vector before(2 * n), residual(2 * n);
     Scalar smallest_change = std::numeric_limits<Scalar>::infinity(), checkpoint_change = smallest_change;
     int checkpoint_sweep = 0;
+    Vector kept_iterate;
+    Eigen::Matrix<TractionState, Eigen::Dynamic, 1> kept_state;
+    Scalar kept_residual = std::numeric_limits<Scalar>::infinity();
     answer.sweeps = 0;
     bool converged = false;
     while (answer.sweeps < options_.max_sweeps) {
@@ -463,6 +467,11 @@ class SteadyRollingSolver {
         checkpoint_sweep = answer.sweeps;
       }
       if (stagnating || largest_change > 10 * smallest_change) {  // restart, more relaxed
+        if (answer.residual < kept_residual) {
+          kept_residual = answer.residual;
+          kept_iterate = iterate;
+          kept_state = answer.state;
+        }
         relaxation *= Scalar(1.5);
         smallest_change = checkpoint_change = std::numeric_limits<Scalar>::infinity();
         checkpoint_sweep = answer.sweeps;
@@ -476,6 +485,11 @@ class SteadyRollingSolver {
       } else {
         mixing.reset();
       }
+    }
+    if (!converged && kept_residual < answer.residual) {
+      iterate = kept_iterate;
+      answer.state = kept_state;
+      answer.residual = kept_residual;
     }
     answer.traction_x = traction_x;
     answer.traction_y = traction_y;

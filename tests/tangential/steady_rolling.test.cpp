@@ -334,7 +334,8 @@ TEST_CASE("Steady rolling in single precision converges with its defaults to CON
 TEST_CASE("A tolerance below the scalar's round-off never ends in a false convergence", "[tangential]") {
   // In float the sweeps' changes stagnate at round-off above 1e-8: the solve restarts more
   // relaxed, and its shorter steps must not pass for convergence (docs/tangential.md §7).
-  // Either it stops at the limit, or what it calls converged is the answer.
+  // Either it stops at the limit, with the least changing iterate it met (before a restart),
+  // or what it calls converged is the answer; both are within 10⁻⁴ μFn of double's.
   const FloatProblem problem = in_float(small_problem());
   const auto value = creepage(4e-4, -3e-4, 0.4);
   const double mu = 0.3, scale = mu * small_problem().normal.normal_force;
@@ -348,13 +349,12 @@ TEST_CASE("A tolerance below the scalar's round-off never ends in a false conver
                           .solve(problem.normal, static_cast<float>(mu), in_float(value));
   INFO(answer.message << ", residual " << answer.residual << ", Fx " << answer.force_x << " against "
                       << reference.force_x);
-  if (answer.ok()) {
-    CHECK(std::abs(static_cast<double>(answer.force_x) - reference.force_x) <= 1e-4 * scale);
-    CHECK(std::abs(static_cast<double>(answer.force_y) - reference.force_y) <= 1e-4 * scale);
-  } else {
+  if (!answer.ok()) {
     CHECK(answer.status == fastnorm::Status::iteration_limit);
     CHECK(answer.residual > options.tolerance);
   }
+  CHECK(std::abs(static_cast<double>(answer.force_x) - reference.force_x) <= 1e-4 * scale);
+  CHECK(std::abs(static_cast<double>(answer.force_y) - reference.force_y) <= 1e-4 * scale);
 }
 
 TEST_CASE("Steady rolling refuses bad input by name", "[tangential]") {
