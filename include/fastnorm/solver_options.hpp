@@ -9,6 +9,7 @@
 #include <limits>
 #include <optional>
 
+#include "fastnorm/constants.hpp"
 #include "fastnorm/error.hpp"
 
 namespace fastnorm {
@@ -65,9 +66,8 @@ struct CgOptions {
   /// Stop when the complementarity error (docs/performance.md Eq. (P1)) — the largest
   /// |gap| where p > 0 and the largest interpenetration where p = 0 — is at most
   /// `tolerance` times the largest interpenetration of the undeformed surfaces. The
-  /// default is 1e-9, or 32 ε of Scalar where that is larger (3.8e-6 for float, whose
-  /// FFT products cannot reach 1e-9).
-  Scalar tolerance = std::max(Scalar(1e-9), 32 * std::numeric_limits<Scalar>::epsilon());
+  /// default is 1e-9, or 32 ε of Scalar where that is larger (default_tolerance).
+  Scalar tolerance = default_tolerance<Scalar>;
   /// Most iterations (products C t) before Status::iteration_limit.
   int max_iterations = 5000;
 

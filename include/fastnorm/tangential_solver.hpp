@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "fastnorm/detail/anderson_mixing.hpp"
+#include "fastnorm/constants.hpp"
 #include "fastnorm/detail/memory_check.hpp"
 #include "fastnorm/error.hpp"
 #include "fastnorm/fft_convolution.hpp"
@@ -41,9 +42,8 @@ enum class TangentialStop {
 template <typename Scalar = double>
 struct TangentialOptions {
   /// The sweeps stop when the measure `stop` of a sweep's traction changes is at most this.
-  /// The default is 1e-9, or 32 ε of Scalar where that is larger (3.8e-6 for float, whose
-  /// sweeps cannot change the tractions by less than their round-off).
-  Scalar tolerance = std::max(Scalar(1e-9), 32 * std::numeric_limits<Scalar>::epsilon());
+  /// The default is 1e-9, or 32 ε of Scalar where that is larger (default_tolerance).
+  Scalar tolerance = default_tolerance<Scalar>;
   TangentialStop stop = TangentialStop::largest_change;
   int max_sweeps = 2000;
   void validate() const {
