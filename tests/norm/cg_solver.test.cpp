@@ -17,7 +17,7 @@ using Catch::Matchers::Contains;
 
 namespace {
 
-const fastnorm::Material<> steel(2.1e11, 0.3);
+using fastnorm::test::steel;
 const fastnorm::Grid<> grid = fastnorm::test::two_bumps_grid();
 
 /// CG's answer against NORM's on the same h and loading.

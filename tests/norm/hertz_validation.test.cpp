@@ -7,10 +7,11 @@
 #include <fastnorm/norm_solver.hpp>
 
 #include "support/complementarity.hpp"
+#include "support/surfaces.hpp"
 
 namespace {
 
-const fastnorm::Material<> steel(2.1e11, 0.3);
+using fastnorm::test::steel;
 
 struct HertzErrors {
   double approach, peak_pressure, semi_axis_x, semi_axis_y, area;

@@ -12,7 +12,7 @@ using Catch::Matchers::Contains;
 
 namespace {
 
-const fastnorm::Material<> steel(2.1e11, 0.3);
+using fastnorm::test::steel;
 
 using fastnorm::test::two_bumps;
 

@@ -10,12 +10,13 @@
 
 #include "support/random_gaps.hpp"
 #include "support/signorini.hpp"
+#include "support/surfaces.hpp"
 
 namespace {
 
 using fastnorm::test::GapChoice;
 
-const fastnorm::Material<> steel(2.1e11, 0.3);
+using fastnorm::test::steel;
 
 /// h with its elements reflected: i → mx−1−i (in x) or j → my−1−j (in y).
 Eigen::VectorXd mirrored(const fastnorm::Grid<>& grid, const Eigen::VectorXd& values, bool in_x) {

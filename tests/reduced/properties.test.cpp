@@ -9,12 +9,13 @@
 #include <cmath>
 
 #include "support/random_gaps.hpp"
+#include "support/surfaces.hpp"
 
 namespace {
 
 using fastnorm::test::GapChoice;
 
-const fastnorm::Material<> steel(2.1e11, 0.3);
+using fastnorm::test::steel;
 
 }  // namespace
 

@@ -17,7 +17,7 @@ using Catch::Matchers::Contains;
 
 namespace {
 
-const fastnorm::Material<> steel(2.1e11, 0.3);
+using fastnorm::test::steel;
 
 // A random symmetric positive definite matrix of n × n (Cholesky tests).
 Eigen::MatrixXd positive_definite(Eigen::Index n) {

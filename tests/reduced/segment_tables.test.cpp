@@ -11,7 +11,7 @@
 
 namespace {
 
-const fastnorm::Material<> steel(2.1e11, 0.3);
+using fastnorm::test::steel;
 
 /// Element numbers of `count` consecutive elements of strip j from i = first.
 std::vector<Eigen::Index> run_of(const fastnorm::Grid<>& grid, Eigen::Index first, Eigen::Index count,

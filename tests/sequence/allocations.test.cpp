@@ -19,10 +19,11 @@
 
 #include "bench/trajectory.hpp"
 #include "support/allocation_counter.hpp"
+#include "support/surfaces.hpp"
 
 namespace {
 
-const fastnorm::Material<> steel(2.1e11, 0.3);
+using fastnorm::test::steel;
 
 template <typename Call>
 long allocations_of(const Call& call) {

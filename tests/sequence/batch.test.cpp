@@ -6,12 +6,13 @@
 
 #include <cmath>
 #include <vector>
+#include "support/surfaces.hpp"
 
 using Catch::Matchers::Contains;
 
 namespace {
 
-const fastnorm::Material<> steel(2.1e11, 0.3);
+using fastnorm::test::steel;
 
 /// Hertz indenters of different depths and tilts on one grid: a small lookup table.
 std::vector<Eigen::VectorXd> table_of_indenters(const fastnorm::Grid<>& grid, int count) {

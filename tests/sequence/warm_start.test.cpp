@@ -6,10 +6,11 @@
 
 #include <string>
 #include <vector>
+#include "support/surfaces.hpp"
 
 namespace {
 
-const fastnorm::Material<> steel(2.1e11, 0.3);
+using fastnorm::test::steel;
 
 /// A Hertz indenter (R = 0.3 m × 0.2 m) moved in steps of `step` elements in x and tilted
 /// a little more each step: h_s(x, y) = h(x − s·step·dx, y) + s·step·2e-3·y − depth.

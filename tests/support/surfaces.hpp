@@ -10,6 +10,9 @@
 
 namespace fastnorm::test {
 
+/// The material of most tests: steel on steel, E 210 GPa, ν 0.3.
+inline const fastnorm::Material<> steel(2.1e11, 0.3);
+
 /// The force-controlled Hertz problem many solver tests solve: an ellipsoid of radii 0.3 m
 /// and 0.2 m on steel (E 210 GPa, ν 0.3) under 50 kN, on a grid of `elements` across 1.4
 /// times its contact.
@@ -22,7 +25,7 @@ struct HertzEllipsoid {
 inline HertzEllipsoid hertz_ellipsoid(Eigen::Index elements) {
   const double force = 5e4;
   const auto contact =
-      fastnorm::hertz_from_force(0.3, 0.2, fastnorm::Material<>(2.1e11, 0.3).combined_modulus(), force);
+      fastnorm::hertz_from_force(0.3, 0.2, steel.combined_modulus(), force);
   const auto grid = fastnorm::hertz_grid(contact, elements, 1.4);
   return {grid, fastnorm::hertz_undeformed_distance(grid, 0.3, 0.2), fastnorm::Loading<>::force(force)};
 }
