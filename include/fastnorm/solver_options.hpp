@@ -66,7 +66,7 @@ struct CgOptions {
   /// Stop when the complementarity error (docs/performance.md Eq. (P1)) — the largest
   /// |gap| where p > 0 and the largest interpenetration where p = 0 — is at most
   /// `tolerance` times the largest interpenetration of the undeformed surfaces. The
-  /// default is 1e-9, or 32 ε of Scalar where that is larger (default_tolerance).
+  /// default is default_tolerance (constants.hpp).
   Scalar tolerance = default_tolerance<Scalar>;
   /// Most iterations (products C t) before Status::iteration_limit.
   int max_iterations = 5000;

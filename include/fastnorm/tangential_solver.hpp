@@ -14,8 +14,8 @@
 #include <string>
 #include <vector>
 
-#include "fastnorm/detail/anderson_mixing.hpp"
 #include "fastnorm/constants.hpp"
+#include "fastnorm/detail/anderson_mixing.hpp"
 #include "fastnorm/detail/memory_check.hpp"
 #include "fastnorm/error.hpp"
 #include "fastnorm/fft_convolution.hpp"
@@ -42,7 +42,7 @@ enum class TangentialStop {
 template <typename Scalar = double>
 struct TangentialOptions {
   /// The sweeps stop when the measure `stop` of a sweep's traction changes is at most this.
-  /// The default is 1e-9, or 32 ε of Scalar where that is larger (default_tolerance).
+  /// The default: default_tolerance (constants.hpp).
   Scalar tolerance = default_tolerance<Scalar>;
   TangentialStop stop = TangentialStop::largest_change;
   int max_sweeps = 2000;

@@ -229,7 +229,7 @@ TEST_CASE("The C API's iteration budget and the work it reports are the C++ mode
 TEST_CASE("The C API's solver tolerances are the C++ spec's, and refused where they do not apply", "[cli][c_api]") {
   // A Hertz problem in force control: a loose join tolerance for the elliptic basis and a
   // loose stopping tolerance for CG, through fastnorm_solver_options and through the spec.
-  const fastnorm::Material<> steel(2.1e11, 0.3);
+  using fastnorm::test::steel;
   const auto [grid, h, loading] = fastnorm::test::hertz_ellipsoid(24);
   const fastnorm_grid c_grid = {static_cast<int>(grid.mx()), static_cast<int>(grid.my()), grid.dx(), grid.dy(),
                                 grid.x0(), grid.y0()};

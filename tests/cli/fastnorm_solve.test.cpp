@@ -11,6 +11,7 @@
 
 #include "support/peer_cases.hpp"
 #include "support/run_command.hpp"
+#include "support/surfaces.hpp"
 
 using Catch::Matchers::Contains;
 namespace fs = std::filesystem;
@@ -31,7 +32,7 @@ fs::path scratch() {
 
 // A small sphere problem in force control, written as a case without a result.
 fs::path write_sphere_case(const fs::path& dir) {
-  const fastnorm::Material<> steel(2.1e11, 0.3);
+  using fastnorm::test::steel;
   const auto hertz = fastnorm::hertz_from_force(0.3, 0.3, steel.combined_modulus(), 5e4);
   const auto grid = fastnorm::hertz_grid(hertz, 15);
   fastnorm::Case<> problem{"sphere 15x15", "cli test", grid, steel, fastnorm::Loading<>::force(5e4), 0.0,

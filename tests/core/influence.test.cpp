@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "support/kernel_quadrature.hpp"
+#include "support/surfaces.hpp"
 
 namespace {
 
@@ -146,7 +147,7 @@ TEST_CASE("Dense blocks and displacements read the same table", "[influence]") {
 }
 
 TEST_CASE("A table read from a larger one is the table built anew, to the last bit", "[influence]") {
-  const fastnorm::Material<> steel(2.1e11, 0.3);
+  using fastnorm::test::steel;
   const fastnorm::InfluenceTable<> larger(fastnorm::Grid<>(16, 12, 0.4e-3, 0.6e-3), steel);
   // Another origin, fewer elements either way: every coefficient, block and displacement is
   // the fresh table's, and add_displacement reads the same columns.

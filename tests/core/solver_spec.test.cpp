@@ -46,7 +46,7 @@ TEST_CASE("Bad solver names and fields are rejected by name", "[core][spec]") {
 }
 
 TEST_CASE("Every option of a spec reaches its solver", "[core][spec]") {
-  const fastnorm::Material<> steel(2.1e11, 0.3);
+  using fastnorm::test::steel;
   const auto [grid, h, loading] = fastnorm::test::hertz_ellipsoid(16);
 
   auto cg = Spec::parse("cg");

@@ -24,7 +24,7 @@ double difference_stiffness(const fastnorm::AnySolver<>& solver, const Vector& h
 }  // namespace
 
 TEST_CASE("normal stiffness is the derivative of the discrete model", "[stiffness]") {
-  const fastnorm::Material<> steel(2.1e11, 0.3);
+  using fastnorm::test::steel;
   const auto grid = fastnorm::test::two_bumps_grid();
   const Vector h = fastnorm::test::two_bumps(grid, 0.02e-3);
   for (const char* name : {"norm", "cg", "elliptic", "polynomial:4", "polynomial-edge:4:1"}) {
@@ -42,7 +42,7 @@ TEST_CASE("normal stiffness is the derivative of the discrete model", "[stiffnes
 }
 
 TEST_CASE("normal stiffness of a Hertz contact is 3/2 Fn/δ", "[stiffness]") {
-  const fastnorm::Material<> steel(2.1e11, 0.3);
+  using fastnorm::test::steel;
   const auto hertz = fastnorm::hertz_from_force(0.3, 0.3, steel.combined_modulus(), 5e4);
   const auto grid = fastnorm::hertz_grid(hertz, 40);
   const Vector h = fastnorm::hertz_undeformed_distance(grid, 0.3, 0.3).array() - hertz.approach;

@@ -9,8 +9,10 @@
 #include <thread>
 #include <vector>
 
+#include "support/surfaces.hpp"
+
 TEST_CASE("Threads sharing one solver get the answers of serial calls", "[sequence][threads]") {
-  const fastnorm::Material<> steel(2.1e11, 0.3);
+  using fastnorm::test::steel;
   const auto hertz = fastnorm::hertz_from_force(0.3, 0.2, steel.combined_modulus(), 5e4);
   const auto grid = fastnorm::hertz_grid(hertz, 16, 1.4);
   std::vector<Eigen::VectorXd> problems;

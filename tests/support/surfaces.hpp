@@ -14,7 +14,7 @@ namespace fastnorm::test {
 inline const fastnorm::Material<> steel(2.1e11, 0.3);
 
 /// The force-controlled Hertz problem many solver tests solve: an ellipsoid of radii 0.3 m
-/// and 0.2 m on steel (E 210 GPa, ν 0.3) under 50 kN, on a grid of `elements` across 1.4
+/// and 0.2 m on `steel` under 50 kN, on a grid of `elements` across 1.4
 /// times its contact.
 struct HertzEllipsoid {
   fastnorm::Grid<> grid;
