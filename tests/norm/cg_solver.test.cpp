@@ -18,10 +18,11 @@ using Catch::Matchers::Contains;
 namespace {
 
 using fastnorm::test::steel;
-const fastnorm::Grid<> grid = fastnorm::test::two_bumps_grid();
+using fastnorm::test::two_bumps_grid;
 
 /// CG's answer against NORM's on the same h and loading.
 void require_same_as_norm(const Eigen::VectorXd& h, const fastnorm::Loading<>& loading) {
+  const auto& grid = two_bumps_grid;
   const auto exact = fastnorm::NormSolver<>(grid, steel).solve(h, loading);
   const fastnorm::CgSolver<> cg(grid, steel);
   const auto iterative = cg.solve(h, loading);
@@ -41,6 +42,7 @@ void require_same_as_norm(const Eigen::VectorXd& h, const fastnorm::Loading<>& l
 }  // namespace
 
 TEST_CASE("CG equals NORM on a two-patch contact, approach and force control", "[norm][cg]") {
+  const auto& grid = two_bumps_grid;
   const Eigen::VectorXd loaded = fastnorm::test::two_bumps(grid, 3e-5);
   SECTION("approach control") { require_same_as_norm(loaded, fastnorm::Loading<>::approach()); }
   SECTION("force control from the unloaded surfaces") {
@@ -64,6 +66,7 @@ TEST_CASE("CG equals NORM on a Hertz contact", "[norm][cg]") {
 }
 
 TEST_CASE("CG stops when the complementarity error is below its tolerance", "[norm][cg]") {
+  const auto& grid = two_bumps_grid;
   const Eigen::VectorXd h = fastnorm::test::two_bumps(grid, 3e-5);
   int previous_iterations = 0;
   for (double tolerance : {1e-3, 1e-6, 1e-9, 1e-12}) {
@@ -85,6 +88,7 @@ TEST_CASE("CG stops when the complementarity error is below its tolerance", "[no
 }
 
 TEST_CASE("CG reports no contact, the iteration limit and bad input", "[norm][cg]") {
+  const auto& grid = two_bumps_grid;
   const fastnorm::CgSolver<> cg(grid, steel);
   const Eigen::VectorXd apart = fastnorm::test::two_bumps(grid, -1e-4);
   const auto none = cg.solve(apart, fastnorm::Loading<>::approach());

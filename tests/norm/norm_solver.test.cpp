@@ -15,12 +15,12 @@ namespace {
 using fastnorm::test::steel;
 
 using fastnorm::test::two_bumps;
-
-const fastnorm::Grid<> grid = fastnorm::test::two_bumps_grid();
+using fastnorm::test::two_bumps_grid;
 
 }  // namespace
 
 TEST_CASE("NORM satisfies the Signorini conditions on a two-patch contact", "[norm]") {
+  const auto& grid = two_bumps_grid;
   const fastnorm::NormSolver<> solver(grid, steel);
   const Eigen::VectorXd h = two_bumps(grid, 3e-5);
   const auto by_approach = solver.solve(h, fastnorm::Loading<>::approach());
@@ -62,6 +62,7 @@ TEST_CASE("NORM satisfies the Signorini conditions on a two-patch contact", "[no
 }
 
 TEST_CASE("NORM reports no contact when every gap is open", "[norm]") {
+  const auto& grid = two_bumps_grid;
   const fastnorm::NormSolver<> solver(grid, steel);
   const auto solution = solver.solve(two_bumps(grid, -1e-6), fastnorm::Loading<>::approach());
   CHECK(solution.status == fastnorm::Status::no_contact);
@@ -73,6 +74,7 @@ TEST_CASE("NORM reports no contact when every gap is open", "[norm]") {
 }
 
 TEST_CASE("NORM reports the iteration limit as a status", "[norm]") {
+  const auto& grid = two_bumps_grid;
   fastnorm::ActiveSetOptions<> options;
   options.max_iterations = 1;
   const fastnorm::NormSolver<> solver(grid, steel, options);
@@ -84,6 +86,7 @@ TEST_CASE("NORM reports the iteration limit as a status", "[norm]") {
 }
 
 TEST_CASE("NORM rejects bad input naming the argument", "[norm]") {
+  const auto& grid = two_bumps_grid;
   const fastnorm::NormSolver<> solver(grid, steel);
   Eigen::VectorXd h = two_bumps(grid, 3e-5);
   CHECK_THROWS_WITH(solver.solve(h.head(10), fastnorm::Loading<>::approach()),

@@ -44,6 +44,6 @@ inline Eigen::VectorXd two_bumps(const fastnorm::Grid<>& grid, double approach) 
 }
 
 /// The grid the two bumps are meant for.
-inline fastnorm::Grid<> two_bumps_grid() { return fastnorm::Grid<>(36, 44, 0.2e-3, 0.15e-3, -3.5e-3, -3.225e-3); }
+inline const fastnorm::Grid<> two_bumps_grid(36, 44, 0.2e-3, 0.15e-3, -3.5e-3, -3.225e-3);
 
 }  // namespace fastnorm::test

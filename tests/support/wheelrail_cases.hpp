@@ -22,6 +22,14 @@ struct WheelRailCase {
   double xcp = 0, ycp = 0, zcp = 0, deltcp = 0;     // contact reference point (mm, rad)
 };
 
+// A wheelset contact model's options on a coarse patch grid, for tests that need many steps.
+inline wheelrail::WheelsetContactOptions coarse_contact(const char* solver = "norm", int elements = 30) {
+  wheelrail::WheelsetContactOptions options;
+  options.solver = SolverSpec<double>::parse(solver);
+  options.grid.elements = elements;
+  return options;
+}
+
 // The wr_* peer cases; none, with a warning, when ../shared/peer-cases is absent.
 inline std::vector<std::string> wheelrail_peer_cases() {
   auto files = peer_case_files("wr_");

@@ -12,7 +12,7 @@ using Catch::Matchers::Contains;
 
 namespace {
 
-wr::EquilibriumOptions coarse() {
+wr::EquilibriumOptions coarse_equilibrium() {
   wr::EquilibriumOptions options;
   options.contact.grid.elements = 30;
   return options;
@@ -26,7 +26,7 @@ TEST_CASE("The wheelset carries its load with no roll moment", "[wheelrail][equi
   const double load = 2e5;
   for (double y : {0.0, 3e-3, 6e-3}) {
     INFO("y = " << y * 1e3 << " mm");
-    const auto result = wr::solve_equilibrium(track, wheelset, y, 0, load, coarse());
+    const auto result = wr::solve_equilibrium(track, wheelset, y, 0, load, coarse_equilibrium());
     REQUIRE(result.ok());
     double vertical = 0, moment = 0;
     for (const auto& contact : result.patches) {
@@ -67,7 +67,7 @@ TEST_CASE("The wheelset carries its load with no roll moment", "[wheelrail][equi
 TEST_CASE("At y = 0, yaw 0 the equilibrium is mirror-symmetric", "[wheelrail][equilibrium]") {
   const wr::Track track;
   const wr::Wheelset wheelset;
-  const auto result = wr::solve_equilibrium(track, wheelset, 0, 0, 2e5, coarse());
+  const auto result = wr::solve_equilibrium(track, wheelset, 0, 0, 2e5, coarse_equilibrium());
   REQUIRE(result.ok());
   REQUIRE(result.patches.size() == 2);
   const auto& a = result.patches[0];
@@ -85,7 +85,8 @@ TEST_CASE("Yaw moves the right patch back and the left patch forward", "[wheelra
   const wr::Track track;
   const wr::Wheelset wheelset;
   for (double yaw_deg : {1.0, -1.0}) {
-    const auto result = wr::solve_equilibrium(track, wheelset, 0, yaw_deg * fastnorm::pi<> / 180, 2e5, coarse());
+    const double yaw = yaw_deg * fastnorm::pi<> / 180;
+    const auto result = wr::solve_equilibrium(track, wheelset, 0, yaw, 2e5, coarse_equilibrium());
     REQUIRE(result.ok());
     for (const auto& contact : result.patches) {
       const auto& patch = contact.patch;
@@ -104,19 +105,19 @@ TEST_CASE("Equilibrium input is checked by name", "[wheelrail][equilibrium]") {
   CHECK_THROWS_WITH(wr::solve_equilibrium(track, wheelset, 0, 0.5, 2e5), Contains("yaw"));
   CHECK_THROWS_WITH(wr::solve_single_wheel(track, wheelset, wr::Side::left, 0, 0, 0), Contains("vertical_force"));
   CHECK_THROWS_WITH(wr::solve_single_wheel(track, wheelset, wr::Side::left, 0, 0, 1e5, {}, 0.3), Contains("roll"));
-  auto options = coarse();
+  auto options = coarse_equilibrium();
   CHECK_THROWS_WITH(options.contact.solver = fastnorm::SolverSpec<>::parse("spline"), Contains("unknown solver"));
-  options = coarse();
+  options = coarse_equilibrium();
   options.contact.grid.elements = 2;
   CHECK_THROWS_WITH(wr::solve_equilibrium(track, wheelset, 0, 0, 2e5, options), Contains("elements"));
   // Every option is validated up front, by name.
-  options = coarse();
+  options = coarse_equilibrium();
   options.force_tolerance = 0;
   CHECK_THROWS_WITH(options.validate(), Contains("force_tolerance"));
-  options = coarse();
+  options = coarse_equilibrium();
   options.contact.search.step = -1;
   CHECK_THROWS_WITH(wr::solve_equilibrium(track, wheelset, 0, 0, 2e5, options), Contains("step"));
-  options = coarse();
+  options = coarse_equilibrium();
   options.start = wr::WheelsetPose{0, std::nan(""), 0, 0};
   CHECK_THROWS_WITH(wr::solve_equilibrium(track, wheelset, 0, 0, 2e5, options), Contains("start: z must"));
   // One set of pose ranges for every function (wr::PoseLimits).
@@ -127,7 +128,7 @@ TEST_CASE("Equilibrium input is checked by name", "[wheelrail][equilibrium]") {
 TEST_CASE("A step limit too small is a status, not an exception", "[wheelrail][equilibrium]") {
   const wr::Track track;
   const wr::Wheelset wheelset;
-  auto options = coarse();
+  auto options = coarse_equilibrium();
   options.max_iterations = 1;
   const auto result = wr::solve_equilibrium(track, wheelset, 3e-3, 0, 2e5, options);
   CHECK(result.status == wr::EquilibriumStatus::not_converged);
@@ -138,7 +139,7 @@ TEST_CASE("A step limit too small is a status, not an exception", "[wheelrail][e
 TEST_CASE("A wheel lifted off its rail is a lost-contact status", "[wheelrail][equilibrium]") {
   const wr::Track track;
   const wr::Wheelset wheelset;
-  auto options = coarse();
+  auto options = coarse_equilibrium();
   options.start = wr::WheelsetPose{0, -5e-3, 0, 0};  // 5 mm above the rails
   const auto both = wr::solve_equilibrium(track, wheelset, 0, 0, 2e5, options);
   CHECK(both.status == wr::EquilibriumStatus::lost_contact);
@@ -159,8 +160,10 @@ void check_flange_range(const std::vector<double>& shifts, const std::vector<dou
                         const std::vector<double>& loads) {
   const wr::Track track;
   const wr::Wheelset wheelset;
-  auto options = coarse();  // full NORM: a reduced basis's force jumps as elements join its
-  options.contact.grid.elements = 20;  // contact set, by more than the force tolerance at times
+  // Full NORM: a reduced basis's force jumps as elements join its contact set, by more than
+  // the force tolerance at times.
+  auto options = coarse_equilibrium();
+  options.contact.grid.elements = 20;
   int converged = 0, climbing = 0;
   for (double load : loads) {
     for (double yaw : yaws) {
@@ -209,7 +212,7 @@ TEST_CASE("From y = -8 to 8 mm the wheelset is in equilibrium or at flange climb
 TEST_CASE("The equilibrium pressed against the flange is mirror-symmetric", "[wheelrail][equilibrium]") {
   const wr::Track track;
   const wr::Wheelset wheelset;
-  auto options = coarse();
+  auto options = coarse_equilibrium();
   options.contact.solver = fastnorm::SolverSpec<double>::parse("elliptic");
   const auto right = wr::solve_equilibrium(track, wheelset, 6.3e-3, 10e-3, 2e5, options);
   const auto left = wr::solve_equilibrium(track, wheelset, -6.3e-3, -10e-3, 2e5, options);
@@ -233,7 +236,7 @@ TEST_CASE("With the Manchester set-up the reference point is CONTACT's at yaw", 
   wr::WheelsetLayout layout;
   layout.nominal_radius = 0.46;
   const wr::Wheelset wheelset(wr::s1002_wheel(), layout);
-  auto options = coarse();
+  auto options = coarse_equilibrium();
   const double shear = 82e9, poisson = 0.28;
   options.contact.material = fastnorm::Material<double>(2 * shear * (1 + poisson), poisson);
   struct Case {
@@ -261,7 +264,7 @@ void compare_with_contact(Eigen::Index elements) {
   if (files.empty()) return;
   const wr::Track track;
   const wr::Wheelset wheelset;
-  auto options = coarse();
+  auto options = coarse_equilibrium();
   options.contact.grid.elements = elements;
   double worst_force = 0, worst_y = 0, worst_angle = 0, worst_z = 0;
   for (const auto& path : files) {

@@ -15,6 +15,7 @@
 
 namespace wr = fastnorm::wheelrail;
 using Catch::Matchers::Contains;
+using fastnorm::test::coarse_contact;
 
 namespace {
 
@@ -27,13 +28,6 @@ fastnorm::Solution<double> norm_on_exact_h(const wr::Track& track, const wr::Whe
       .solve(h, fastnorm::Loading<double>::approach());
 }
 
-wr::WheelsetContactOptions coarse(const char* solver = "norm") {
-  wr::WheelsetContactOptions options;
-  options.solver = fastnorm::SolverSpec<double>::parse(solver);
-  options.grid.elements = 30;
-  return options;
-}
-
 }  // namespace
 
 TEST_CASE("At the equilibrium pose the model gives the equilibrium's patches", "[wheelrail][contact]") {
@@ -43,7 +37,7 @@ TEST_CASE("At the equilibrium pose the model gives the equilibrium's patches", "
   equilibrium_options.contact.grid.elements = 30;
   const auto equilibrium = wr::solve_equilibrium(track, wheelset, 3e-3, 0, 2e5, equilibrium_options);
   REQUIRE(equilibrium.ok());
-  auto options = coarse();
+  auto options = coarse_contact();
   options.snap_to_lattice = false;  // grids centred on the reference points, as the equilibrium's
   options.distance_everywhere = true;  // and h on every element, as the equilibrium's
   options.grid.element_length = equilibrium.patches[0].patch.grid.dx();
@@ -89,7 +83,7 @@ TEST_CASE("Along a trajectory every patch is full NORM's on the exact h", "[whee
   for (const char* solver : {"norm", "cg", "elliptic", "elliptic+warm"}) {
     INFO(solver << ", h within " << tolerance << " m");
     const bool warm_reduced = std::string(solver) == "elliptic+warm";
-    auto options = coarse(warm_reduced ? "elliptic" : solver);
+    auto options = coarse_contact(warm_reduced ? "elliptic" : solver);
     options.distance.tolerance = tolerance;
     if (options.solver.is_reduced()) options.reduced_warm_start = warm_reduced;
     wr::WheelsetContact<> contact(track, wheelset, options);
@@ -139,7 +133,7 @@ TEST_CASE("Warm NORM starts are exact and reuse the lattice", "[wheelrail][conta
   const wr::Wheelset wheelset;
   auto pose = wr::rigid_contact_pose(track, wheelset, 3e-3, 0);
   pose.z += 0.1e-3;
-  wr::WheelsetContact<> contact(track, wheelset, coarse());
+  wr::WheelsetContact<> contact(track, wheelset, coarse_contact());
   const fastnorm::Material<double> steel(2.1e11, 0.3);
   std::array<wr::PatchFrame, 2> first{};
   for (int step = 0; step < 8; ++step) {
@@ -170,18 +164,18 @@ TEST_CASE("Reduced warm starts begin at the patch's last contact set", "[wheelra
   pose.z += 0.1e-3;
   SECTION("defaults: warm but for the edge-enriched elliptic basis, NORM and CG warm") {
     for (const char* name : {"norm", "cg", "elliptic", "polynomial:4", "polynomial-edge:4:1"}) {
-      CHECK(coarse(name).starts_warm());
+      CHECK(coarse_contact(name).starts_warm());
     }
-    CHECK(!coarse("elliptic-edge:1").starts_warm());
-    auto options = coarse("elliptic-edge:1");
+    CHECK(!coarse_contact("elliptic-edge:1").starts_warm());
+    auto options = coarse_contact("elliptic-edge:1");
     options.reduced_warm_start = true;
     CHECK(options.starts_warm());
-    options = coarse("polynomial-edge:4:1");
+    options = coarse_contact("polynomial-edge:4:1");
     options.reduced_warm_start = false;
     CHECK(!options.starts_warm());
   }
   SECTION("the same pose again: the last set is stable at once, in the same box and the same answer") {
-    auto options = coarse("elliptic");
+    auto options = coarse_contact("elliptic");
     options.reduced_warm_start = true;
     wr::WheelsetContact<> contact(track, wheelset, options);
     std::array<double, 2> force{};
@@ -214,7 +208,7 @@ void compare_fixed_pose_with_contact(Eigen::Index elements, double pmax_toleranc
   const auto files = fastnorm::test::wheelrail_peer_cases();
   const wr::Track track;
   const wr::Wheelset wheelset;
-  auto options = coarse();
+  auto options = coarse_contact();
   options.grid.elements = elements;
   options.snap_to_lattice = false;
   wr::WheelsetContact<> contact(track, wheelset, options);
@@ -262,12 +256,12 @@ TEST_CASE("At CONTACT's wheelset positions, on CONTACT's 60 elements", "[wheelra
 TEST_CASE("The model rejects bad poses and options by name", "[wheelrail][contact]") {
   const wr::Track track;
   const wr::Wheelset wheelset;
-  wr::WheelsetContact<> contact(track, wheelset, coarse());
+  wr::WheelsetContact<> contact(track, wheelset, coarse_contact());
   const double nan = std::numeric_limits<double>::quiet_NaN();
   CHECK_THROWS_WITH(contact.evaluate({0, nan, 0, 0}), Contains("z"));
   CHECK_THROWS_WITH(contact.evaluate({0.05, 0, 0, 0}), Contains("y"));
   CHECK_THROWS_WITH(contact.evaluate({0, 0, 0, std::numeric_limits<double>::infinity()}), Contains("yaw"));
-  auto options = coarse();
+  auto options = coarse_contact();
   options.grid.element_length = 1e-4;  // without element_width
   CHECK_THROWS_WITH(wr::WheelsetContact<>(track, wheelset, options), Contains("element_width"));
   // Lifted off: no patches, zero force, no error.
