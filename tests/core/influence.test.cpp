@@ -11,13 +11,13 @@
 namespace {
 
 using fastnorm::test::Real;
-const Real pi = fastnorm::test::pi_long;
+using fastnorm::test::pi_long;
 
 // C(di·dx, dj·dy) by quadrature: (1/(π E*)) ∫∫ dA / r over the rectangle of the source element.
 Real quadrature_coefficient(int di, int dj, Real dx, Real dy, Real combined_modulus, bool near) {
   const Real integral =
       fastnorm::test::element_integral(fastnorm::test::PointKernel::inverse_distance, di, dj, dx, dy, near);
-  return integral / (pi * combined_modulus);
+  return integral / (pi_long * combined_modulus);
 }
 
 }  // namespace
