@@ -25,7 +25,7 @@ double difference_stiffness(const fastnorm::AnySolver<>& solver, const Vector& h
 
 TEST_CASE("normal stiffness is the derivative of the discrete model", "[stiffness]") {
   using fastnorm::test::steel;
-  const auto grid = fastnorm::test::two_bumps_grid;
+  const auto& grid = fastnorm::test::two_bumps_grid;
   const Vector h = fastnorm::test::two_bumps(grid, 0.02e-3);
   for (const char* name : {"norm", "cg", "elliptic", "polynomial:4", "polynomial-edge:4:1"}) {
     INFO(name);

@@ -55,7 +55,7 @@ double relative_force_error(const fastnorm::Solution<>& solution, const fastnorm
 }  // namespace
 
 TEST_CASE("With an identity basis the reduced solver is full NORM", "[reduced]") {
-  const auto grid = fastnorm::test::two_bumps_grid;
+  const auto& grid = fastnorm::test::two_bumps_grid;
   const Eigen::VectorXd h = fastnorm::test::two_bumps(grid, 3e-5);
   const fastnorm::NormSolver<> norm(grid, steel);
   const fastnorm::ReducedSolver<IdentityBasis> identity(grid, steel);
@@ -72,7 +72,7 @@ TEST_CASE("With an identity basis the reduced solver is full NORM", "[reduced]")
 }
 
 TEST_CASE("A rank-deficient basis takes the minimum-norm solve and the same answer", "[reduced]") {
-  const auto grid = fastnorm::test::two_bumps_grid;
+  const auto& grid = fastnorm::test::two_bumps_grid;
   const Eigen::VectorXd h = fastnorm::test::two_bumps(grid, 3e-5);
   const auto single = fastnorm::ReducedSolver<ConstantBasis<1>>(grid, steel).solve(h, fastnorm::Loading<>::approach());
   const auto doubled = fastnorm::ReducedSolver<ConstantBasis<2>>(grid, steel).solve(h, fastnorm::Loading<>::approach());
@@ -259,7 +259,7 @@ TEST_CASE("Reduced solvers against full NORM on Hertz contacts", "[reduced][hert
 }
 
 TEST_CASE("Solvers are found by name", "[reduced][any]") {
-  const auto grid = fastnorm::test::two_bumps_grid;
+  const auto& grid = fastnorm::test::two_bumps_grid;
   CHECK(fastnorm::AnySolver<>("norm", grid, steel).name() == "norm");
   CHECK(fastnorm::AnySolver<>("cg", grid, steel).name() == "cg");
   CHECK(fastnorm::AnySolver<>("elliptic", grid, steel).name() == "elliptic");

@@ -161,7 +161,7 @@ TEST_CASE("Segment tables cover grids of their element sizes and E* up to their 
 TEMPLATE_TEST_CASE("A solver for_grid shares the tables and answers as a new solver on that grid",
                    "[reduced][correlation]", fastnorm::EllipticBasis, fastnorm::PolynomialBasis,
                    fastnorm::PolynomialEdgeBasis) {
-  const auto grid = fastnorm::test::two_bumps_grid;
+  const auto& grid = fastnorm::test::two_bumps_grid;
   const Eigen::VectorXd h = fastnorm::test::two_bumps(grid, 3e-5);
   const fastnorm::ReducedSolver<TestType> largest(
       fastnorm::Grid<>(grid.mx() + 9, grid.my() + 4, grid.dx(), grid.dy()), steel);
@@ -217,7 +217,7 @@ TEST_CASE("Segment tables stay within their memory budget", "[reduced][correlati
 
 TEMPLATE_TEST_CASE("Tables built ahead are every table a solve reads, with the answers of tables built on use",
                    "[reduced][correlation]", fastnorm::EllipticBasis, fastnorm::PolynomialEdgeBasis) {
-  const auto grid = fastnorm::test::two_bumps_grid;
+  const auto& grid = fastnorm::test::two_bumps_grid;
   const Eigen::VectorXd h = fastnorm::test::two_bumps(grid, 3e-5);
   const fastnorm::ReducedSolver<TestType> largest(fastnorm::Grid<>(grid.mx() + 4, grid.my() + 4, grid.dx(), grid.dy()),
                                                   steel);
@@ -244,7 +244,7 @@ TEMPLATE_TEST_CASE("Tables built ahead are every table a solve reads, with the a
 TEMPLATE_TEST_CASE("Segment tables and direct products give the same solution",
                    "[reduced][correlation]", fastnorm::EllipticBasis, fastnorm::PolynomialBasis,
                    fastnorm::PolynomialEdgeBasis) {
-  const auto grid = fastnorm::test::two_bumps_grid;
+  const auto& grid = fastnorm::test::two_bumps_grid;
   const Eigen::VectorXd h = fastnorm::test::two_bumps(grid, 3e-5);
   fastnorm::ReducedOptions<> direct_only;
   direct_only.table_budget_bytes = 0;

@@ -16,9 +16,11 @@
 
 namespace wr = fastnorm::wheelrail;
 using Catch::Matchers::Contains;
-using fastnorm::test::coarse_contact;  // on 20 elements here
 
 namespace {
+
+// The options of the models here, on 20 elements a patch: the tests build many models.
+wr::WheelsetContactOptions model_options(const char* solver) { return fastnorm::test::coarse_contact(solver, 20); }
 
 // Both wheels at y = 4 mm pressed 0.1 mm into their rails: a tread and a flange-root patch.
 wr::WheelsetPose pressed_pose() {
@@ -84,7 +86,7 @@ void check_solver_type(const char* name) {
   INFO(name);
   const wr::Track track;
   const wr::Wheelset wheelset;
-  const auto options = coarse_contact(name, 20);
+  const auto options = model_options(name);
   wr::WheelsetContact<Solver> named(track, wheelset, options);
   wr::WheelsetContact<> any(track, wheelset, options);
   const auto pose = pressed_pose();
@@ -121,12 +123,12 @@ TEST_CASE("A solver spec of another kind than the model's solver type is refused
   const wr::Wheelset wheelset;
   using Norm = fastnorm::NormSolver<>;
   using Elliptic = fastnorm::ReducedSolver<fastnorm::EllipticBasis>;
-  CHECK_THROWS_WITH(wr::WheelsetContact<Norm>(track, wheelset, coarse_contact("cg", 20)),
+  CHECK_THROWS_WITH(wr::WheelsetContact<Norm>(track, wheelset, model_options("cg")),
                     Contains("WheelsetContactOptions: solver is 'cg'"));
-  CHECK_THROWS_WITH(wr::WheelsetContact<Elliptic>(track, wheelset, coarse_contact("polynomial", 20)),
+  CHECK_THROWS_WITH(wr::WheelsetContact<Elliptic>(track, wheelset, model_options("polynomial")),
                     Contains("WheelsetContactOptions: solver is 'polynomial:4'"));
   wr::EquilibriumOptions options;
-  options.contact = coarse_contact("elliptic", 20);
+  options.contact = model_options("elliptic");
   CHECK_THROWS_WITH(wr::solve_equilibrium<Norm>(track, wheelset, 0, 0, 2e5, options),
                     Contains("EquilibriumOptions: contact.solver is 'elliptic'"));
   CHECK_THROWS_WITH(fastnorm::make_solver<Norm>(fastnorm::SolverSpec<>::parse("cg"),
@@ -138,10 +140,10 @@ TEST_CASE("The model owns its track and wheelset: built from temporaries, moved,
           "[wheelrail][model]") {
   const auto pose = pressed_pose();
   // Temporaries: with references kept, this evaluate would read freed objects (ASan in CI).
-  wr::WheelsetContact<fastnorm::NormSolver<>> from_temporaries{wr::Track(), wr::Wheelset(), coarse_contact("norm", 20)};
+  wr::WheelsetContact<fastnorm::NormSolver<>> from_temporaries{wr::Track(), wr::Wheelset(), model_options("norm")};
   const wr::Track track;
   const wr::Wheelset wheelset;
-  wr::WheelsetContact<fastnorm::NormSolver<>> reference(track, wheelset, coarse_contact("norm", 20));
+  wr::WheelsetContact<fastnorm::NormSolver<>> reference(track, wheelset, model_options("norm"));
   const auto expected = reference.evaluate(pose);
   check_same_patches(from_temporaries.evaluate(pose), expected);
   // A moved model goes on from where it was: its search continues, its answers are the same.
@@ -179,7 +181,7 @@ TEST_CASE("The contact search knows a track by its id, not by its address", "[wh
 }
 
 TEST_CASE("The equilibrium of a given model is that model's own", "[wheelrail][model]") {
-  wr::WheelsetContact<fastnorm::NormSolver<>> model(wr::Track(), wr::Wheelset(), coarse_contact("norm", 20));
+  wr::WheelsetContact<fastnorm::NormSolver<>> model(wr::Track(), wr::Wheelset(), model_options("norm"));
   const double load = 2e5;
   const auto found = wr::solve_equilibrium(model, 3e-3, 1e-3, load);
   REQUIRE(found.ok());
@@ -194,17 +196,17 @@ TEST_CASE("The equilibrium of a given model is that model's own", "[wheelrail][m
   const double vertical = vertical_force(again);
   CHECK(std::abs(vertical - load) <= wr::EquilibriumOptions().force_tolerance * load);
   // A model without stiffness cannot drive Newton.
-  auto options = coarse_contact("norm", 20);
+  auto options = model_options("norm");
   options.stiffness = false;
   wr::WheelsetContact<fastnorm::NormSolver<>> stiff_less(wr::Track(), wr::Wheelset(), options);
   CHECK_THROWS_WITH(wr::solve_equilibrium(stiff_less, 3e-3, 0, load), Contains("stiffness must be on"));
   // A model whose solves stop short (a cap, a budget) has them lifted for the search, whose
   // Newton needs converged forces, and put back after: the equilibrium is the free model's.
-  auto capped_options = coarse_contact("elliptic", 20);
+  auto capped_options = model_options("elliptic");
   capped_options.warm_solve_iterations = 1;
   wr::WheelsetContact<> capped(wr::Track(), wr::Wheelset(), capped_options);
   capped.set_iteration_budget(2);
-  wr::WheelsetContact<> free_model(wr::Track(), wr::Wheelset(), coarse_contact("elliptic", 20));
+  wr::WheelsetContact<> free_model(wr::Track(), wr::Wheelset(), model_options("elliptic"));
   const auto capped_found = wr::solve_equilibrium(capped, 3e-3, 0, load);
   const auto free_found = wr::solve_equilibrium(free_model, 3e-3, 0, load);
   REQUIRE(free_found.ok());
@@ -225,14 +227,14 @@ TEST_CASE("The step status names the wheel and patch that failed, and why", "[wh
   CHECK(wr::StepStatus().code == wr::StepStatus::Code::not_solved);
   CHECK_FALSE(wr::WheelsetContactResult().ok());
   const auto pose = pressed_pose();
-  wr::WheelsetContact<> good(wr::Track(), wr::Wheelset(), coarse_contact("norm", 20));
+  wr::WheelsetContact<> good(wr::Track(), wr::Wheelset(), model_options("norm"));
   const auto& fine = good.evaluate(pose);
   CHECK(fine.ok());
   CHECK(fine.status.patch == -1);
   CHECK(fine.status.message.empty());
   // One active-set iteration cannot reach NORM's contact set: every patch ends at the
   // iteration limit, and the first failure is the left wheel's first patch.
-  auto options = coarse_contact("norm", 20);
+  auto options = model_options("norm");
   options.solver.active_set.max_iterations = 1;
   wr::WheelsetContact<fastnorm::NormSolver<>> starved(wr::Track(), wr::Wheelset(), options);
   const auto& result = starved.evaluate(pose);
@@ -254,8 +256,8 @@ TEST_CASE("A step spends at most its iteration budget, and reports what it spent
   const auto pose = pressed_pose();
   for (const char* name : {"norm", "cg", "elliptic"}) {
     INFO(name);
-    wr::WheelsetContact<> free_model(wr::Track(), wr::Wheelset(), coarse_contact(name, 20));
-    wr::WheelsetContact<> ample(wr::Track(), wr::Wheelset(), coarse_contact(name, 20));
+    wr::WheelsetContact<> free_model(wr::Track(), wr::Wheelset(), model_options(name));
+    wr::WheelsetContact<> ample(wr::Track(), wr::Wheelset(), model_options(name));
     ample.set_iteration_budget(100000);
     CHECK(ample.iteration_budget() == 100000);
     for (int step = 0; step < 3; ++step) {
@@ -284,7 +286,7 @@ TEST_CASE("A step spends at most its iteration budget, and reports what it spent
   // solve a single iteration. A stop at an iterate whose pressures are all positive is the
   // budget's (budget_reached, usable); one after a drop, before any such iterate, is a
   // failure (iteration_limit), and the step status names the first.
-  wr::WheelsetContact<> tight(wr::Track(), wr::Wheelset(), coarse_contact("elliptic", 20));
+  wr::WheelsetContact<> tight(wr::Track(), wr::Wheelset(), model_options("elliptic"));
   tight.set_iteration_budget(1);
   const auto& result = tight.evaluate(pose);
   int patches = 0;
@@ -312,7 +314,7 @@ TEST_CASE("A step spends at most its iteration budget, and reports what it spent
   // A budgeted patch goes on from where its loop stopped (the joins it found included),
   // so that at a pose held fixed the budgeted model reaches the free model's answer within
   // a few steps; it would repeat its one set forever if it started each step from its answer.
-  wr::WheelsetContact<> free_model(wr::Track(), wr::Wheelset(), coarse_contact("elliptic", 20));
+  wr::WheelsetContact<> free_model(wr::Track(), wr::Wheelset(), model_options("elliptic"));
   const auto& free_result = free_model.evaluate(pose);
   REQUIRE(free_result.ok());
   int free_iterations = 0;
@@ -338,10 +340,10 @@ TEST_CASE("A per-solve cap bounds warm solves only, and a capped model follows t
   // every step is usable, and at a pose held fixed the model reaches the free model's
   // answer there.
   const auto pose = pressed_pose();
-  auto options = coarse_contact("elliptic", 20);
+  auto options = model_options("elliptic");
   options.warm_solve_iterations = 1;
   wr::WheelsetContact<> capped(wr::Track(), wr::Wheelset(), options);
-  wr::WheelsetContact<> free_model(wr::Track(), wr::Wheelset(), coarse_contact("elliptic", 20));
+  wr::WheelsetContact<> free_model(wr::Track(), wr::Wheelset(), model_options("elliptic"));
   // Both models' answers converged, and the same.
   const auto same_answers = [](const wr::WheelsetContactResult& got, const wr::WheelsetContactResult& expected) {
     for (const auto& wheel : expected.wheels) {
@@ -388,7 +390,7 @@ namespace {
 template <typename Solver>
 void check_trial_steps(const char* name) {
   INFO(name);
-  const auto options = coarse_contact(name, 20);
+  const auto options = model_options(name);
   wr::WheelsetContact<Solver> model(wr::Track(), wr::Wheelset(), options);
   wr::WheelsetContact<Solver> untried(wr::Track(), wr::Wheelset(), options);
   typename wr::WheelsetContact<Solver>::History saved;
@@ -442,7 +444,7 @@ namespace {
 template <typename Solver>
 void check_reset_forgets(const char* name) {
   INFO(name);
-  const auto options = coarse_contact(name, 20);
+  const auto options = model_options(name);
   const auto pose = pressed_pose();
   wr::WheelsetContact<Solver> fresh(wr::Track(), wr::Wheelset(), options);
   wr::WheelsetContact<Solver> model(wr::Track(), wr::Wheelset(), options);
@@ -473,7 +475,7 @@ namespace {
 template <typename Solver>
 void check_shared_tables(const char* name) {
   INFO(name);
-  auto options = coarse_contact(name, 20);
+  auto options = model_options(name);
   wr::WheelsetContact<Solver> shared(wr::Track(), wr::Wheelset(), options);
   options.shared_table_box = 8;  // no box fits: tables per box size, as before sharing
   wr::WheelsetContact<Solver> own(wr::Track(), wr::Wheelset(), options);
@@ -499,7 +501,7 @@ TEST_CASE("Solvers of all box sizes share the segment tables, with the answers o
   check_shared_tables<fastnorm::AnySolver<>>("polynomial:4");
   check_shared_tables<fastnorm::NormSolver<>>("norm");  // no segment tables: the option changes nothing
 
-  auto options = coarse_contact("elliptic", 20);
+  auto options = model_options("elliptic");
   options.shared_table_box = -1;
   CHECK_THROWS_WITH(wr::WheelsetContact<>(wr::Track(), wr::Wheelset(), options),
                     Catch::Matchers::Contains("shared_table_box"));
@@ -518,7 +520,7 @@ TEST_CASE("The same pose reached along different histories: forces within the gr
   auto target = wr::rigid_contact_pose(track, wheelset, 2e-3, 1e-3);
   target.z += 0.1e-3;
   auto cold_force = [&](const char* solver, Eigen::Index elements, std::optional<bool> warm) {
-    auto options = coarse_contact(solver, 20);
+    auto options = model_options(solver);
     options.grid.elements = elements;
     options.reduced_warm_start = warm;
     wr::WheelsetContact<> model(track, wheelset, options);
@@ -541,7 +543,7 @@ TEST_CASE("The same pose reached along different histories: forces within the gr
     // 80 µm above, and a jump from the other side of the track (the patches appear anew).
     for (int history = 0; history < 4; ++history) {
       INFO("history " << history);
-      auto options = coarse_contact(basis.name, 20);
+      auto options = model_options(basis.name);
       options.grid.elements = 40;
       options.reduced_warm_start = basis.warm;
       wr::WheelsetContact<> model(track, wheelset, options);
