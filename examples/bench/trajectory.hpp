@@ -7,7 +7,13 @@
 //   trajectory solver=<name> steps=<n> search_us=<t> h_us=<t> solve_us=<t> tangential_us=<t>
 //     total_us=<t> total_p99_us=<t> max_err_vs_norm=<x> max_set_diff=<n> roughness=<x>
 //     roughness_norm=<x> allocations_per_step=<x> allocating_steps=<n> iterations_per_patch=<x>
-//     limited_solves=<n>
+//     limited_solves=<n> total_halves_us=<t>/<t>
+//
+// The solvers' models (NORM's first) are stepped in turns of 100 steps (interleave_block),
+// so that every solver meets the machine of the same minutes; total_halves_us are the
+// medians of the run's first and second half, which along 2 000 steps are the motion's two
+// periods, the same poses: their difference is how far the machine moved the figures (the
+// first period also meets every grid size for the first time).
 //
 // The wheelset moves forwards at 30 m/s, rolling (pitch rate −V/r0), with the pose's rates
 // by central differences: each step also gives every patch's creep forces (strip theory,
@@ -54,8 +60,8 @@
 // that ended so.
 //
 // Times are medians per wheel per step (p99 of the total); errors and contact-set
-// differences against NORM on the same h at every 20th step (NORM runs first, on the same
-// grids: the grids depend on the geometry only); roughness = the largest
+// differences against NORM on the same h at every 20th step (on the same grids: the grids
+// depend on the geometry only); roughness = the largest
 // |Fn(t+1) − 2Fn(t) + Fn(t−1)| / Fn(t) of a wheel's total normal force; allocations per
 // step inside evaluate, after the first ten, and the number of those steps that allocated
 // at all (-1: not counted in this build).
@@ -197,45 +203,71 @@ struct TrajectorySolver {
 
 inline constexpr int check_every = 20;
 
-inline TrajectoryRun run_trajectory(const wr::Track& track, const wr::Wheelset& wheelset,
-                                    const std::vector<wr::WheelsetPose>& poses, const std::string& solver) {
-  wr::WheelsetContact<> contact(track, wheelset, TrajectorySolver::parse(solver).options());
-  const auto velocities = trajectory_velocities(wheelset, poses);
-  TrajectoryRun run;
-  long iterations = 0, solves = 0;
-  StepAllocations allocations;  // inside evaluate only: the run's own records allocate too
-  for (std::size_t step = 0; step < poses.size(); ++step) {
-    allocations.start();
-    const auto& result = contact.evaluate(poses[step], velocities[step]);
-    allocations.stop(step);
+/// One solver's model along the poses, stepped a block of steps at a time, so that the
+/// bench can interleave the solvers and every solver's steps meet the machine of the same
+/// minutes (a shared machine's speed drifts by tens of per cent over minutes).
+class TrajectoryRunner {
+ public:
+  TrajectoryRunner(const wr::Track& track, const wr::Wheelset& wheelset, const std::vector<wr::WheelsetPose>& poses,
+                   const std::vector<wr::WheelsetVelocity>& velocities, const std::string& solver)
+      : poses_(poses), velocities_(velocities), contact_(track, wheelset, TrajectorySolver::parse(solver).options()) {}
+
+  /// Evaluates steps [first, end) of the poses, in order, after those before `first`.
+  void run_steps(std::size_t first, std::size_t end) {
+    for (std::size_t step = first; step < end; ++step) {
+      allocations_.start();  // inside evaluate only: the run's own records allocate too
+      const auto& result = contact_.evaluate(poses_[step], velocities_[step]);
+      allocations_.stop(step);
+      record(step, result);
+    }
+  }
+
+  /// The record of the steps run, with the run's means and allocations.
+  TrajectoryRun finish() {
+    run_.iterations_per_patch = solves_ > 0 ? static_cast<double>(iterations_) / static_cast<double>(solves_) : 0.0;
+    run_.allocations_per_step = allocations_.per_step(poses_.size());
+    run_.allocating_steps = allocations_.steps_allocating(poses_.size());
+    return std::move(run_);
+  }
+
+ private:
+  void record(std::size_t step, const wr::WheelsetContactResult& result) {
     std::array<double, 2> force{};
     for (std::size_t w = 0; w < 2; ++w) {
       const auto& wheel = result.wheels[w];
-      run.search.push_back(wheel.times.search);
-      run.distance.push_back(wheel.times.distance);
-      run.solve.push_back(wheel.times.solve);
-      run.tangential.push_back(wheel.times.tangential);
-      run.total.push_back(wheel.times.search + wheel.times.distance + wheel.times.solve);
+      run_.search.push_back(wheel.times.search);
+      run_.distance.push_back(wheel.times.distance);
+      run_.solve.push_back(wheel.times.solve);
+      run_.tangential.push_back(wheel.times.tangential);
+      run_.total.push_back(wheel.times.search + wheel.times.distance + wheel.times.solve);
       force[w] = wheel.normal_force;
       for (const auto& patch : wheel.patches) {
-        iterations += patch.solution.iterations, ++solves;
-        run.limited_solves += patch.solution.stopped_early() ? 1 : 0;
+        iterations_ += patch.solution.iterations, ++solves_;
+        run_.limited_solves += patch.solution.stopped_early() ? 1 : 0;
       }
     }
-    run.wheel_force.push_back(force);
+    run_.wheel_force.push_back(force);
     if (step % check_every == 0) {
       std::vector<fastnorm::Solution<double>> solutions;
       for (const auto& wheel : result.wheels) {
         for (const auto& patch : wheel.patches) solutions.push_back(patch.solution);
       }
-      run.checked.push_back(std::move(solutions));
+      run_.checked.push_back(std::move(solutions));
     }
   }
-  run.iterations_per_patch = solves > 0 ? static_cast<double>(iterations) / static_cast<double>(solves) : 0.0;
-  run.allocations_per_step = allocations.per_step(poses.size());
-  run.allocating_steps = allocations.steps_allocating(poses.size());
-  return run;
-}
+
+  const std::vector<wr::WheelsetPose>& poses_;
+  const std::vector<wr::WheelsetVelocity>& velocities_;
+  wr::WheelsetContact<> contact_;
+  TrajectoryRun run_;
+  StepAllocations allocations_;
+  long iterations_ = 0, solves_ = 0;
+};
+
+/// Steps between switches from one solver's model to the next in bench_trajectory: long
+/// enough that a switch's cold caches do not move a median, short enough that every solver
+/// meets each minute of the machine.
+inline constexpr std::size_t interleave_block = 100;
 
 inline double quantile(std::vector<double> values, double q) {
   std::sort(values.begin(), values.end());
@@ -412,29 +444,50 @@ inline void bench_trajectory(const std::vector<std::string>& solvers, int steps)
   const wr::Track track;
   const wr::Wheelset wheelset;
   const auto poses = trajectory_poses(track, wheelset, steps);
-  const TrajectoryRun norm = run_trajectory(track, wheelset, poses, "norm");
+  const auto velocities = trajectory_velocities(wheelset, poses);
+  // NORM and every other solver named (a "norm" among them is NORM's run), stepped in
+  // turns of interleave_block steps.
+  std::vector<std::unique_ptr<TrajectoryRunner>> runners;
+  std::vector<std::size_t> runner_of(solvers.size(), 0);
+  runners.push_back(std::make_unique<TrajectoryRunner>(track, wheelset, poses, velocities, "norm"));
+  for (std::size_t s = 0; s < solvers.size(); ++s) {
+    if (TrajectorySolver::parse(solvers[s]).label() == "norm") continue;
+    runner_of[s] = runners.size();
+    runners.push_back(std::make_unique<TrajectoryRunner>(track, wheelset, poses, velocities, solvers[s]));
+  }
+  for (std::size_t first = 0; first < poses.size(); first += interleave_block) {
+    for (auto& runner : runners) runner->run_steps(first, std::min(first + interleave_block, poses.size()));
+  }
+  std::vector<TrajectoryRun> finished;
+  for (auto& runner : runners) finished.push_back(runner->finish());
+  const TrajectoryRun& norm = finished.front();
   struct Labelled {
     TrajectorySolver solver;
-    TrajectoryRun run;
+    const TrajectoryRun& run;
   };
   std::vector<Labelled> runs;
-  for (const auto& name : solvers) {
-    const TrajectorySolver solver = TrajectorySolver::parse(name);
-    const std::string label = solver.label();
-    TrajectoryRun run = label == "norm" ? norm : run_trajectory(track, wheelset, poses, name);
+  for (std::size_t s = 0; s < solvers.size(); ++s) {
+    const TrajectorySolver solver = TrajectorySolver::parse(solvers[s]);
+    const TrajectoryRun& run = finished[runner_of[s]];
     const PatchComparison to_norm = compare_patches(run, norm);
     const long max_set_diff = to_norm.set_diff.empty() ? 0 : *std::max_element(to_norm.set_diff.begin(), to_norm.set_diff.end());
+    // The medians of the run's two halves (along 2 000 steps, the motion's two periods: the
+    // same poses), a measure of how far the machine moved the figures.
+    const auto half = static_cast<std::ptrdiff_t>(run.total.size() / 2);
+    const std::vector<double> first_half(run.total.begin(), run.total.begin() + half),
+        second_half(run.total.begin() + half, run.total.end());
     std::printf("trajectory solver=%s steps=%d search_us=%.1f h_us=%.1f solve_us=%.1f tangential_us=%.1f total_us=%.1f "
                 "total_p99_us=%.1f "
                 "max_err_vs_norm=%.3e max_set_diff=%ld roughness=%.3e roughness_norm=%.3e allocations_per_step=%.2f "
-                "allocating_steps=%ld iterations_per_patch=%.2f limited_solves=%ld\n",
-                label.c_str(), steps, 1e6 * quantile(run.search, 0.5),
+                "allocating_steps=%ld iterations_per_patch=%.2f limited_solves=%ld total_halves_us=%.1f/%.1f\n",
+                solver.label().c_str(), steps, 1e6 * quantile(run.search, 0.5),
                 1e6 * quantile(run.distance, 0.5), 1e6 * quantile(run.solve, 0.5), 1e6 * quantile(run.tangential, 0.5),
                 1e6 * quantile(run.total, 0.5),
                 1e6 * quantile(run.total, 0.99), largest(to_norm.error), max_set_diff, roughness(run), roughness(norm),
-                run.allocations_per_step, run.allocating_steps, run.iterations_per_patch, run.limited_solves);
+                run.allocations_per_step, run.allocating_steps, run.iterations_per_patch, run.limited_solves,
+                1e6 * quantile(first_half, 0.5), 1e6 * quantile(second_half, 0.5));
     std::fflush(stdout);
-    runs.push_back({solver, std::move(run)});
+    runs.push_back({solver, run});
   }
   // Pairs of runs of one reduced solver, one warm and one cold.
   for (const auto& warm : runs) {
