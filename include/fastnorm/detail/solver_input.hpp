@@ -27,9 +27,12 @@ void check_problem(const Grid<Scalar>& grid, const Eigen::Ref<const Eigen::Matri
                  detail::describe("undeformed_distance must have grid.size() = " + std::to_string(grid.size()) +
                                       " values",
                                   h.size()));
-  for (Eigen::Index k = 0; k < h.size(); ++k) {
-    FASTNORM_CHECK(std::isfinite(h(k)),
-                   detail::describe("undeformed_distance[" + std::to_string(k) + "] must be finite", h(k)));
+  // One vectorised pass; the element is looked for only when there is one to name.
+  if (!h.allFinite()) {
+    for (Eigen::Index k = 0; k < h.size(); ++k) {
+      FASTNORM_CHECK(std::isfinite(h(k)),
+                     detail::describe("undeformed_distance[" + std::to_string(k) + "] must be finite", h(k)));
+    }
   }
   if (loading.control == Control::force) Loading<Scalar>::force(loading.normal_force);  // validates Fn
 }
