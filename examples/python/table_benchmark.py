@@ -6,6 +6,7 @@ direct evaluation. A benchmark, not a test: it prints figures.
     python3 table_benchmark.py accuracy [--queries 300] [--elements 40] [--yaws 3] [--loads 3] [--store DIR]
                                         [--derivative-step M]
     python3 table_benchmark.py flange-steps [--elements 40] [--steps 0.05,0.025,0.0125] [--derivative-step M]
+    python3 table_benchmark.py lobes [--region tread|flange] [--elements 40]
 
 throughput: 400 equilibria (y -6…6 mm, 4 yaws, one load, CG) built serially in this process,
 by a process pool of two workers, by a Dask LocalCluster of two single-thread workers started
@@ -19,8 +20,10 @@ wheel is on its flange root or flange), yaw 0…8 mrad (--yaws nodes, 3: by 4 mr
 random cell midpoints in all three axes a direct equilibrium beside the PCHIP and
 multilinear lookups; per region (tread |y| < 4 mm, flange)
 the largest, 95th-percentile and median differences: normal force per patch in units of the
-table's largest normal force, contact angle in rad, largest pressure relative, and where the
-largest lies. Midpoints whose cell the topology guard refuses are counted, not compared.
+table's largest normal force, contact angle in rad, largest pressure relative (as the
+max_pressure output interpolated, and as the larger of the two lobes' interpolated maxima,
+max_pressure_by_lobes: docs/tables.md §3), and where the largest lies. Midpoints whose cell
+the topology guard refuses are counted, not compared.
 
 flange-steps: what the y step must be just before flange climb. Tables over y 5.9…6.5 mm by
 0.05, 0.025 and 0.0125 mm (yaw 4, 6, 8 mrad; load 150, 200, 250 kN); at every y midpoint,
@@ -28,6 +31,13 @@ yaw and load at their nodes, PCHIP against a direct equilibrium: the largest nor
 difference per patch (in units of 455 505 N, the accuracy table's largest patch force at 40
 elements) and contact angle difference (rad), and where each lies; then every patch above
 issue 30's 5e-4 and 1e-3 rad.
+
+lobes: the largest pressure where two lobes' peaks cross between nodes. A table over the
+tread, y -4…4 mm by 0.25 mm, or near the right flange, y 4…7 mm by 0.05 mm (--region; yaw 0, 4,
+8 mrad; load 150, 200, 250 kN); at every y
+midpoint, yaw and load at their nodes, PCHIP against a direct equilibrium: max_pressure
+interpolated against the larger of the two lobes' interpolated maxima (docs/validation.md §8),
+relative, per patch.
 
 --derivative-step M: the tables are built with the spec's shift_derivative_step = M (m): the
 outputs' d/dy measured by central differences at y ± M, which the lookups' cubics along y take
@@ -73,7 +83,7 @@ def throughput(repeats, elements):
 
 # What accuracy and flange-steps compare per patch, each as a difference from a direct
 # equilibrium: the normal force in units of a largest force, the angle in rad, pmax relative.
-COMPARED = ("normal_force", "contact_angle", "max_pressure")
+COMPARED = ("normal_force", "contact_angle", "max_pressure", "max_pressure_by_lobes")
 
 
 def _direct(model, y, yaw, load):
@@ -90,11 +100,15 @@ def _differences(names, outputs, direct, largest_force, y, yaw, load):
     """(where, {output: difference}) for each patch of `direct` against a lookup's `outputs`."""
     for w, wheel in enumerate(tables.WHEELS):
         for p, patch in enumerate(direct.wheels[w].patches[:tables.PATCHES]):
-            at = {name: outputs[names.index(f"{name}_{wheel}{p}")] for name in COMPARED}
+            at = {name: outputs[names.index(f"{name}_{wheel}{p}")]
+                  for name in ("normal_force", "contact_angle", "max_pressure", "max_pressure_lower_lobe",
+                               "max_pressure_upper_lobe")}
+            by_lobes = max(at["max_pressure_lower_lobe"], at["max_pressure_upper_lobe"])
             yield (f"y={y * 1e3:.5g}mm yaw={yaw * 1e3:.3g}mrad load={load / 1e3:.4g}kN {wheel}{p}",
                    {"normal_force": abs(at["normal_force"] - patch.normal_force_n) / largest_force,
                     "contact_angle": abs(at["contact_angle"] - patch.contact_angle_rad),
-                    "max_pressure": abs(at["max_pressure"] / patch.max_pressure_pa - 1)})
+                    "max_pressure": abs(at["max_pressure"] / patch.max_pressure_pa - 1),
+                    "max_pressure_by_lobes": abs(by_lobes / patch.max_pressure_pa - 1)})
 
 
 def accuracy(queries, elements, yaws, loads, store, derivative_step=None):
@@ -145,18 +159,22 @@ def accuracy(queries, elements, yaws, loads, store, derivative_step=None):
                   f"largest_at {largest_at[(region, how, name)][1]}")
 
 
+def _built_table(spec):
+    """The ContactTable of `spec` built on two workers in a temporary store, and its y nodes."""
+    store = tempfile.mkdtemp(prefix="fastnorm-table-")
+    try:
+        tables.build(spec, store, executor="process", workers=2, progress=False)
+        return tables.contact_table(store), tables.read_spec(store)["lateral_shift_m"]
+    finally:
+        shutil.rmtree(store)
+
+
 def flange_steps(elements, steps, derivative_step=None):
     for step in steps:
         spec = {"lateral_shift_m": [{"start": 5.9e-3, "stop": 6.5e-3, "step": step}], "yaw_rad": [4e-3, 6e-3, 8e-3],
                 "load_n": [1.5e5, 2e5, 2.5e5], "solver": "cg", "elements": elements, "chunk_size": 20,
                 "shift_derivative_step": derivative_step}
-        store = tempfile.mkdtemp(prefix="fastnorm-table-flange-")
-        try:
-            tables.build(spec, store, executor="process", workers=2, progress=False)
-            table = tables.contact_table(store)
-            shifts = tables.read_spec(store)["lateral_shift_m"]
-        finally:
-            shutil.rmtree(store)
+        table, shifts = _built_table(spec)
         names = table.output_names
         model = fastnorm.WheelsetContact(solver="cg", elements=elements)
         largest = {"normal_force": (0.0, ""), "contact_angle": (0.0, "")}
@@ -189,21 +207,54 @@ def flange_steps(elements, steps, derivative_step=None):
             print(f"  {name} above {target[name]:g}: {len(misses)} of {compared}" + "".join(f"\n    {m}" for m in misses))
 
 
+LOBE_REGIONS = {"tread": {"start": -4e-3, "stop": 4e-3, "step": 0.25e-3},
+                "flange": {"start": 4e-3, "stop": 7e-3, "step": 0.05e-3}}
+
+
+def lobes(elements, region):
+    spec = {"lateral_shift_m": [LOBE_REGIONS[region]], "yaw_rad": [0.0, 4e-3, 8e-3],
+            "load_n": [1.5e5, 2e5, 2.5e5], "solver": "cg", "elements": elements, "chunk_size": 20}
+    table, shifts = _built_table(spec)
+    names = table.output_names
+    model = fastnorm.WheelsetContact(solver="cg", elements=elements)
+    compared = {"max_pressure": [], "max_pressure_by_lobes": []}
+    largest_at = {}
+    for yaw in spec["yaw_rad"]:
+        for load in spec["load_n"]:
+            for i in range(len(shifts) - 1):
+                y = (shifts[i] + shifts[i + 1]) / 2
+                status, outputs = table.lookup(0, y, yaw, load, interpolation="pchip")
+                direct = _direct(model, y, yaw, load) if status == "ok" else None
+                if direct is None:
+                    continue
+                for where, patch_differences in _differences(names, outputs, direct, 1.0, y, yaw, load):
+                    for name, values in compared.items():
+                        values.append(patch_differences[name])
+                        if patch_differences[name] >= largest_at.get(name, (-1.0, ""))[0]:
+                            largest_at[name] = (patch_differences[name], where)
+    for name, values in compared.items():
+        print(f"lobes region={region} elements={elements} {name}: patches={len(values)} max={max(values):.3g} "
+              f"p95={np.percentile(values, 95):.3g} median={np.median(values):.3g} largest_at {largest_at[name][1]}")
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("what", choices=["throughput", "accuracy", "flange-steps"])
+    parser.add_argument("what", choices=["throughput", "accuracy", "flange-steps", "lobes"])
     parser.add_argument("--repeats", type=int, default=3)
     parser.add_argument("--queries", type=int, default=300)
-    parser.add_argument("--elements", type=int, default=None, help="default 30 (throughput), 40 (accuracy, flange-steps)")
+    parser.add_argument("--elements", type=int, default=None, help="default 30 (throughput), 40 (the others)")
     parser.add_argument("--yaws", type=int, default=3, help="accuracy: yaw nodes over 0…8 mrad")
     parser.add_argument("--loads", type=int, default=3, help="accuracy: load nodes over 150…250 kN")
     parser.add_argument("--store", default=None, help="accuracy: build into (or reuse) this store")
+    parser.add_argument("--region", choices=sorted(LOBE_REGIONS), default="tread", help="lobes: where")
     parser.add_argument("--steps", default="0.05,0.025,0.0125", help="flange-steps: the y steps (mm)")
     parser.add_argument("--derivative-step", type=float, default=None,
                         help="build with shift_derivative_step = this (m): d/dy measured at y ± it")
     args = parser.parse_args()
     if args.what == "throughput":
         throughput(args.repeats, args.elements or 30)
+    elif args.what == "lobes":
+        lobes(args.elements or 40, args.region)
     elif args.what == "flange-steps":
         flange_steps(args.elements or 40, [float(step) * 1e-3 for step in args.steps.split(",")], args.derivative_step)
     else:

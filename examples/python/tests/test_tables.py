@@ -61,6 +61,44 @@ def test_the_serial_table_is_complete_and_converged(serial_store):
     assert np.all(np.diff(difference) > 0)
 
 
+def test_the_larger_lobe_maximum_is_the_largest_pressure_of_every_patch(serial_store):
+    # docs/tables.md §3: the two lobes' maxima split the patch; the larger is max_pressure.
+    _, arrays = tables.load_arrays(str(serial_store))
+    names = [name for name, *_ in tables.PATCH_OUTPUTS]
+    values = arrays["patch_values"]
+    solved = ~np.isnan(values[..., names.index("max_pressure")])
+    lobes = np.maximum(values[..., names.index("max_pressure_lower_lobe")],
+                       values[..., names.index("max_pressure_upper_lobe")])
+    assert solved.sum() > 400
+    np.testing.assert_array_equal(lobes[solved], values[..., names.index("max_pressure")][solved])
+    assert np.isnan(lobes[~solved]).all()
+
+
+def two_bumps(rows, columns, lower_peak, upper_peak, lower_row, upper_row):
+    """A pressure field (rows across s, columns along x) of two elliptic bumps, each its
+    peak at the given row and the middle column."""
+    s = np.arange(rows)[:, None]
+    x = (np.arange(columns)[None, :] - columns // 2) / (columns / 2)
+    field = np.zeros((rows, columns))
+    for peak, row in ((lower_peak, lower_row), (upper_peak, upper_row)):
+        field = np.maximum(field, peak * np.sqrt(np.clip(1 - x**2 - ((s - row) / 4.0)**2, 0, None)))
+    return field
+
+
+def test_lobe_maxima_follow_position_not_size():
+    # The lobe at lower s is the first output whichever is higher; a dip between them splits.
+    assert tables.lobe_maxima(two_bumps(24, 15, 700.0, 900.0, 6, 15)) == (700.0, 900.0)
+    assert tables.lobe_maxima(two_bumps(24, 15, 900.0, 700.0, 6, 15)) == (900.0, 700.0)
+    # Three lobes: the two highest split at the lowest row maximum between them; the third,
+    # lowest, lies on the side it lies on.
+    three = np.maximum(two_bumps(40, 15, 800.0, 600.0, 6, 18), two_bumps(40, 15, 0.0, 500.0, 0, 30))
+    assert tables.lobe_maxima(three) == (800.0, 600.0)
+    # One lobe (a single bump, or a plateau): both outputs are the patch's largest pressure.
+    assert tables.lobe_maxima(two_bumps(24, 15, 900.0, 0.0, 10, 10)) == (900.0, 900.0)
+    assert tables.lobe_maxima(np.full((5, 4), 3.0)) == (3.0, 3.0)
+    assert tables.lobe_maxima(np.zeros((5, 4))) == (0.0, 0.0)
+
+
 def test_a_worker_killed_mid_sweep_costs_its_chunk_only(serial_store, tmp_path, monkeypatch):
     marker = tmp_path / "worker-died"
     # The worker that reaches chunk 16 (40 % of the 40) dies there; dask runs it elsewhere.

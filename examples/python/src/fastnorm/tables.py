@@ -61,6 +61,10 @@ PATCH_OUTPUTS = (
     ("profile_y", "m", "wheel profile coordinate of the contact reference point", lambda p: p.profile_y_m),
     ("rolling_radius", "m", "wheel rolling radius at the contact reference point", lambda p: p.rolling_radius_m),
     ("max_pressure", "Pa", "largest pressure", lambda p: p.max_pressure_pa),
+    ("max_pressure_lower_lobe", "Pa", "largest pressure of the pressure lobe at lower s",
+     lambda p: lobe_maxima(p.solution.pressure_pa)[0]),
+    ("max_pressure_upper_lobe", "Pa", "largest pressure of the pressure lobe at higher s",
+     lambda p: lobe_maxima(p.solution.pressure_pa)[1]),
     ("area", "m2", "contact area", lambda p: p.contact_elements * p.grid.dx_m * p.grid.dy_m),
     ("length", "m", "extent of the contact area along the rolling direction", lambda p: _extent(p, 1, p.grid.dx_m)),
     ("width", "m", "extent of the contact area across", lambda p: _extent(p, 0, p.grid.dy_m)),
@@ -129,6 +133,27 @@ def _resample_pressure(patch, axes):
     value = ((1 - tj) * ((1 - ti) * padded[j, i] + ti * padded[j, i + 1]) +
              tj * ((1 - ti) * padded[j + 1, i] + ti * padded[j + 1, i + 1]))
     return value.astype(np.float32)
+
+
+def lobe_maxima(pressure):
+    """(lower, upper): the largest pressures of a patch's two pressure lobes across the rolling
+    direction (docs/tables.md §3). Rows are strips at fixed s; q(s) is each row's largest
+    pressure. With two or more local maxima of q, the two highest split the patch at the
+    lowest q between them, and each side's largest q is its lobe's; with one, both are the
+    patch's largest pressure. The larger of the two is always the patch's max_pressure; the
+    point of the split is between nodes of a table, where two lobes' peaks can cross (a kink
+    in max_pressure that no interpolant of it follows): the larger of the two lobes'
+    interpolants follows it (docs/validation.md §8)."""
+    row_peak = np.asarray(pressure).max(axis=1)
+    rows = row_peak.size
+    peaks = [j for j in range(rows) if row_peak[j] > 0 and (j == 0 or row_peak[j] >= row_peak[j - 1])
+             and (j == rows - 1 or row_peak[j] > row_peak[j + 1])]
+    if len(peaks) < 2:
+        largest = float(row_peak.max()) if rows else 0.0
+        return largest, largest
+    first, second = sorted(sorted(peaks, key=lambda j: -row_peak[j])[:2])
+    split = first + int(np.argmin(row_peak[first:second + 1]))
+    return float(row_peak[:split].max()), float(row_peak[split:].max())
 
 
 def _extent(patch, axis, size):
