@@ -149,7 +149,7 @@ def lobe_maxima(pressure):
     peaks = [j for j in range(rows) if row_peak[j] > 0 and (j == 0 or row_peak[j] >= row_peak[j - 1])
              and (j == rows - 1 or row_peak[j] > row_peak[j + 1])]
     if len(peaks) < 2:
-        largest = float(row_peak.max()) if rows else 0.0
+        largest = float(row_peak.max())
         return largest, largest
     first, second = sorted(sorted(peaks, key=lambda j: -row_peak[j])[:2])
     split = first + int(np.argmin(row_peak[first:second + 1]))
