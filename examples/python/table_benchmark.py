@@ -159,14 +159,29 @@ def accuracy(queries, elements, yaws, loads, store, derivative_step=None):
                   f"largest_at {largest_at[(region, how, name)][1]}")
 
 
-def _built_table(spec):
-    """The ContactTable of `spec` built on two workers in a temporary store, and its y nodes."""
+def _along_y(spec, largest_force):
+    """Builds the table of `spec` (on two workers, in a temporary store) and yields, at every
+    y midpoint with yaw and load at their nodes, None where the topology guard refuses the
+    cell, else the (where, differences) of _differences for each patch of a direct
+    equilibrium (none if it did not converge), the lookups PCHIP."""
     store = tempfile.mkdtemp(prefix="fastnorm-table-")
     try:
         tables.build(spec, store, executor="process", workers=2, progress=False)
-        return tables.contact_table(store), tables.read_spec(store)["lateral_shift_m"]
+        table, shifts = tables.contact_table(store), tables.read_spec(store)["lateral_shift_m"]
     finally:
         shutil.rmtree(store)
+    model = fastnorm.WheelsetContact(solver="cg", elements=spec["elements"])
+    for yaw in spec["yaw_rad"]:
+        for load in spec["load_n"]:
+            for i in range(len(shifts) - 1):
+                y = (shifts[i] + shifts[i + 1]) / 2
+                status, outputs = table.lookup(0, y, yaw, load, interpolation="pchip")
+                if status != "ok":
+                    yield None
+                    continue
+                direct = _direct(model, y, yaw, load)
+                if direct is not None:
+                    yield from _differences(table.output_names, outputs, direct, largest_force, y, yaw, load)
 
 
 def flange_steps(elements, steps, derivative_step=None):
@@ -174,31 +189,21 @@ def flange_steps(elements, steps, derivative_step=None):
         spec = {"lateral_shift_m": [{"start": 5.9e-3, "stop": 6.5e-3, "step": step}], "yaw_rad": [4e-3, 6e-3, 8e-3],
                 "load_n": [1.5e5, 2e5, 2.5e5], "solver": "cg", "elements": elements, "chunk_size": 20,
                 "shift_derivative_step": derivative_step}
-        table, shifts = _built_table(spec)
-        names = table.output_names
-        model = fastnorm.WheelsetContact(solver="cg", elements=elements)
         largest = {"normal_force": (0.0, ""), "contact_angle": (0.0, "")}
         target = {"normal_force": 5e-4, "contact_angle": 1e-3}  # issue 30's
         over = {name: [] for name in largest}
         compared = guarded = 0
-        for yaw in spec["yaw_rad"]:
-            for load in spec["load_n"]:
-                for i in range(len(shifts) - 1):
-                    y = (shifts[i] + shifts[i + 1]) / 2
-                    status, outputs = table.lookup(0, y, yaw, load, interpolation="pchip")
-                    if status != "ok":
-                        guarded += 1
-                        continue
-                    direct = _direct(model, y, yaw, load)
-                    if direct is None:
-                        continue
-                    for where, patch_differences in _differences(names, outputs, direct, 455505.0, y, yaw, load):
-                        compared += 1
-                        for name in largest:
-                            if patch_differences[name] > largest[name][0]:
-                                largest[name] = (patch_differences[name], where)
-                            if patch_differences[name] > target[name]:
-                                over[name].append(f"{patch_differences[name]:.3g} at {where}")
+        for patch in _along_y(spec, 455505.0):
+            if patch is None:
+                guarded += 1
+                continue
+            where, patch_differences = patch
+            compared += 1
+            for name in largest:
+                if patch_differences[name] > largest[name][0]:
+                    largest[name] = (patch_differences[name], where)
+                if patch_differences[name] > target[name]:
+                    over[name].append(f"{patch_differences[name]:.3g} at {where}")
         print(f"flange_steps elements={elements} step_mm={step * 1e3:.4g} derivative_step={derivative_step} "
               f"compared={compared} guarded={guarded} "
               f"normal_force_max={largest['normal_force'][0]:.3g} at {largest['normal_force'][1]} "
@@ -214,24 +219,13 @@ LOBE_REGIONS = {"tread": {"start": -4e-3, "stop": 4e-3, "step": 0.25e-3},
 def lobes(elements, region):
     spec = {"lateral_shift_m": [LOBE_REGIONS[region]], "yaw_rad": [0.0, 4e-3, 8e-3],
             "load_n": [1.5e5, 2e5, 2.5e5], "solver": "cg", "elements": elements, "chunk_size": 20}
-    table, shifts = _built_table(spec)
-    names = table.output_names
-    model = fastnorm.WheelsetContact(solver="cg", elements=elements)
     compared = {"max_pressure": [], "max_pressure_by_lobes": []}
     largest_at = {}
-    for yaw in spec["yaw_rad"]:
-        for load in spec["load_n"]:
-            for i in range(len(shifts) - 1):
-                y = (shifts[i] + shifts[i + 1]) / 2
-                status, outputs = table.lookup(0, y, yaw, load, interpolation="pchip")
-                direct = _direct(model, y, yaw, load) if status == "ok" else None
-                if direct is None:
-                    continue
-                for where, patch_differences in _differences(names, outputs, direct, 1.0, y, yaw, load):
-                    for name, values in compared.items():
-                        values.append(patch_differences[name])
-                        if patch_differences[name] >= largest_at.get(name, (-1.0, ""))[0]:
-                            largest_at[name] = (patch_differences[name], where)
+    for where, patch_differences in filter(None, _along_y(spec, 1.0)):
+        for name, values in compared.items():
+            values.append(patch_differences[name])
+            if patch_differences[name] >= largest_at.get(name, (-1.0, ""))[0]:
+                largest_at[name] = (patch_differences[name], where)
     for name, values in compared.items():
         print(f"lobes region={region} elements={elements} {name}: patches={len(values)} max={max(values):.3g} "
               f"p95={np.percentile(values, 95):.3g} median={np.median(values):.3g} largest_at {largest_at[name][1]}")
