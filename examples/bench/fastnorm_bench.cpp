@@ -10,7 +10,8 @@
 //   with --sequence, then for each case and solver (--sequence-solvers cg,elliptic,polynomial:4):
 //     sequence=<name> solver=<s> calls=<n> per_call_s=<t> cold_per_call_s=<t> speedup_warm=<x>
 //   fastnorm-bench --growth [--sizes 30,60,120,240,480,960] [--repeats 3]
-//   fastnorm-bench --trajectory [--steps 2000] [--trajectory-solvers norm,cg,elliptic,elliptic+warm,...]: trajectory.hpp
+//   fastnorm-bench --trajectory [--steps 2000] [--trajectory-solvers norm,cg,elliptic,elliptic+warm,...]: trajectory.hpp, then
+//     a set_oracle line per warm reduced solver (how much of a solve is the search for its contact set): set_oracle.hpp
 //   fastnorm-bench --tangential [--repeats 5] [CASE...]: steady rolling on CONTACT's Hertz examples or the cases, tangential.hpp
 //   fastnorm-bench --creep-accuracy CASE...: FASTSIM and strip theory against the exact path at four adhesion levels, tangential.hpp
 //   fastnorm-bench --table [--repeats 5]: ContactTable lookups, multilinear and PCHIP, table_lookup.hpp
@@ -43,7 +44,7 @@
 #include "support/arguments.hpp"
 #include "table_lookup.hpp"
 #include "tangential.hpp"
-#include "trajectory.hpp"
+#include "set_oracle.hpp"
 
 namespace {
 
@@ -274,6 +275,7 @@ fastnorm_example::CommandLine command_line(Arguments& a) {
 int run(const Arguments& a) {
   if (a.trajectory) {
     fastnorm_bench::bench_trajectory(a.trajectory_solvers, a.steps);
+    fastnorm_bench::bench_set_oracles(a.trajectory_solvers, a.steps);
     return 0;
   }
   if (a.table) {
