@@ -80,7 +80,7 @@ inline void bench_set_oracle(const wr::Track& track, const wr::Wheelset& wheelse
                                             options.material);
   std::map<std::pair<Eigen::Index, Eigen::Index>, std::unique_ptr<fastnorm::AnySolver<double>>> solvers;
 
-  enum Start { last, oracle, rebuilt };
+  enum Start : std::size_t { last, oracle, rebuilt };
   std::array<fastnorm::AnyWorkspace<double>, 3> workspaces;
   std::array<std::array<std::vector<double>, 3>, 2> seconds;  // [straight, after the buffer][start]
   std::array<double, 3> iterations{};
@@ -99,8 +99,8 @@ inline void bench_set_oracle(const wr::Track& track, const wr::Wheelset& wheelse
       if (!grid_solver) grid_solver = std::make_unique<fastnorm::AnySolver<double>>(largest.for_grid(problem.grid));
       std::array<fastnorm::Solution<double>, 3> answers;
       std::array<double, 3> taken{};
-      for (int turn = 0; turn < 3; ++turn) {
-        const auto start = static_cast<Start>((static_cast<int>(step) + turn) % 3);
+      for (std::size_t turn = 0; turn < 3; ++turn) {
+        const auto start = static_cast<Start>((step + turn) % 3);
         auto& workspace = workspaces[start];
         if (start == rebuilt) workspace.forget();
         workspace.start().set_contact_set(start == last ? recorded[step - 1].contact_set : problem.contact_set);
@@ -110,11 +110,11 @@ inline void bench_set_oracle(const wr::Track& track, const wr::Wheelset& wheelse
         taken[start] = std::chrono::duration<double>(Clock::now() - from).count();
       }
       if (!timed) continue;
-      for (int start = 0; start < 3; ++start) seconds[flushed][start].push_back(taken[start]);
+      for (std::size_t start = 0; start < 3; ++start) seconds[flushed][start].push_back(taken[start]);
       (flushed ? ratio_flushed : ratio_straight).push_back(taken[oracle] / taken[last]);
       if (flushed) continue;
       ++counted;
-      for (int start = 0; start < 3; ++start) iterations[start] += answers[start].iterations;
+      for (std::size_t start = 0; start < 3; ++start) iterations[start] += answers[start].iterations;
       if (answers[oracle].normal_force > 0) {
         largest_force_diff = std::max(largest_force_diff, std::abs(answers[last].normal_force / answers[oracle].normal_force - 1));
       }
@@ -124,7 +124,7 @@ inline void bench_set_oracle(const wr::Track& track, const wr::Wheelset& wheelse
     std::printf("set_oracle solver=%s steps=0\n", parsed.label().c_str());
     return;
   }
-  const auto median_us = [&](int flushed, Start start) { return 1e6 * quantile(seconds[flushed][start], 0.5); };
+  const auto median_us = [&](std::size_t flushed, Start start) { return 1e6 * quantile(seconds[flushed][start], 0.5); };
   std::printf("set_oracle solver=%s steps=%ld last_us=%.1f/%.1f oracle_us=%.1f/%.1f rebuilt_us=%.1f/%.1f "
               "oracle_ratio=%.3f/%.3f iterations_last=%.2f iterations_oracle=%.2f max_force_diff=%.1e\n",
               parsed.label().c_str(), counted, median_us(0, last), median_us(1, last), median_us(0, oracle),
