@@ -24,6 +24,7 @@
 
 #include <fastnorm/fastnorm.hpp>
 
+#include <algorithm>
 #include <array>
 #include <chrono>
 #include <cmath>
@@ -39,6 +40,7 @@
 
 namespace fastnorm_bench {
 
+/// The set_oracle line of one solver along `poses` (see the head of this file).
 inline void bench_set_oracle(const wr::Track& track, const wr::Wheelset& wheelset,
                              const std::vector<wr::WheelsetPose>& poses, const std::string& solver) {
   const TrajectorySolver parsed = TrajectorySolver::parse(solver);
@@ -70,12 +72,17 @@ inline void bench_set_oracle(const wr::Track& track, const wr::Wheelset& wheelse
   };
 
   // One solver per grid size, all sharing the segment tables of one on the largest box met,
-  // as the model's solvers do.
+  // as the model's solvers do (the element sizes are the model's, the same on every box).
+  const auto met = std::find_if(recorded.begin(), recorded.end(), [](const Recorded& step) { return !step.contact_set.empty(); });
+  if (met == recorded.end()) {
+    std::printf("set_oracle solver=%s steps=0\n", parsed.label().c_str());
+    return;
+  }
+  const fastnorm::Grid<double>& sizes = met->grid;
   Eigen::Index largest_mx = 1, largest_my = 1;
   for (const auto& step : recorded) {
     largest_mx = std::max(largest_mx, step.grid.mx()), largest_my = std::max(largest_my, step.grid.my());
   }
-  const auto& sizes = recorded.back().grid;
   const fastnorm::AnySolver<double> largest(options.solver, fastnorm::Grid<double>(largest_mx, largest_my, sizes.dx(), sizes.dy()),
                                             options.material);
   std::map<std::pair<Eigen::Index, Eigen::Index>, std::unique_ptr<fastnorm::AnySolver<double>>> solvers;
