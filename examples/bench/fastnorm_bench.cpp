@@ -274,8 +274,11 @@ fastnorm_example::CommandLine command_line(Arguments& a) {
 
 int run(const Arguments& a) {
   if (a.trajectory) {
-    fastnorm_bench::bench_trajectory(a.trajectory_solvers, a.steps);
-    fastnorm_bench::bench_set_oracles(a.trajectory_solvers, a.steps);
+    const fastnorm::wheelrail::Track track;
+    const fastnorm::wheelrail::Wheelset wheelset;
+    const auto poses = fastnorm_bench::trajectory_poses(track, wheelset, a.steps);  // seconds: made once for both
+    fastnorm_bench::bench_trajectory(track, wheelset, poses, a.trajectory_solvers);
+    fastnorm_bench::bench_set_oracles(track, wheelset, poses, a.trajectory_solvers);
     return 0;
   }
   if (a.table) {

@@ -46,25 +46,21 @@ inline void bench_set_oracle(const wr::Track& track, const wr::Wheelset& wheelse
   const TrajectorySolver parsed = TrajectorySolver::parse(solver);
   const wr::WheelsetContactOptions options = parsed.options();
   struct Recorded {
-    fastnorm::Grid<double> grid;
+    fastnorm::Grid<double> grid{1, 1, 1, 1};
     Eigen::VectorXd undeformed_distance;
-    std::vector<Eigen::Index> contact_set;
+    fastnorm::WarmStart<double> final_set;  // empty: no patch, or its solve failed
+    const std::vector<Eigen::Index>& contact_set() const { return final_set.contact_set(); }
   };
-  std::vector<Recorded> recorded;
+  std::vector<Recorded> recorded(poses.size());
   {
     wr::WheelsetContact<> contact(track, wheelset, options);
-    for (const auto& pose : poses) {
-      const auto& wheel = contact.evaluate(pose).wheel(wr::Side::right);
-      if (wheel.patches.empty()) {
-        recorded.push_back({fastnorm::Grid<double>(1, 1, 1, 1), {}, {}});
-        continue;
-      }
+    for (std::size_t step = 0; step < poses.size(); ++step) {
+      const auto& wheel = contact.evaluate(poses[step]).wheel(wr::Side::right);
+      if (wheel.patches.empty()) continue;
       const auto& patch = wheel.patches.front();
-      Recorded step{patch.patch.grid, patch.patch.undeformed_distance, {}};
-      for (Eigen::Index k = 0; k < patch.solution.in_contact.size(); ++k) {
-        if (patch.solution.in_contact(k)) step.contact_set.push_back(k);
-      }
-      recorded.push_back(std::move(step));
+      recorded[step].grid = patch.patch.grid;
+      recorded[step].undeformed_distance = patch.patch.undeformed_distance;
+      recorded[step].final_set.remember_set(patch.solution);
     }
   }
   const auto same_box = [](const fastnorm::Grid<double>& a, const fastnorm::Grid<double>& b) {
@@ -73,11 +69,9 @@ inline void bench_set_oracle(const wr::Track& track, const wr::Wheelset& wheelse
 
   // One solver per grid size, all sharing the segment tables of one on the largest box met,
   // as the model's solvers do (the element sizes are the model's, the same on every box).
-  const auto met = std::find_if(recorded.begin(), recorded.end(), [](const Recorded& step) { return !step.contact_set.empty(); });
-  if (met == recorded.end()) {
-    std::printf("set_oracle solver=%s steps=0\n", parsed.label().c_str());
-    return;
-  }
+  const auto no_steps = [&parsed] { std::printf("set_oracle solver=%s steps=0\n", parsed.label().c_str()); };
+  const auto met = std::find_if(recorded.begin(), recorded.end(), [](const Recorded& step) { return !step.contact_set().empty(); });
+  if (met == recorded.end()) return no_steps();
   const fastnorm::Grid<double>& sizes = met->grid;
   Eigen::Index largest_mx = 1, largest_my = 1;
   for (const auto& step : recorded) {
@@ -101,7 +95,7 @@ inline void bench_set_oracle(const wr::Track& track, const wr::Wheelset& wheelse
     const bool timed = replay > 0, flushed = replay == 2;
     for (std::size_t step = 1; step < recorded.size(); ++step) {
       const Recorded& problem = recorded[step];
-      if (problem.contact_set.empty() || !same_box(problem.grid, recorded[step - 1].grid)) continue;
+      if (problem.contact_set().empty() || !same_box(problem.grid, recorded[step - 1].grid)) continue;
       auto& grid_solver = solvers[{problem.grid.mx(), problem.grid.my()}];
       if (!grid_solver) grid_solver = std::make_unique<fastnorm::AnySolver<double>>(largest.for_grid(problem.grid));
       std::array<fastnorm::Solution<double>, 3> answers;
@@ -110,7 +104,7 @@ inline void bench_set_oracle(const wr::Track& track, const wr::Wheelset& wheelse
         const auto start = static_cast<Start>((step + turn) % 3);
         auto& workspace = workspaces[start];
         if (start == rebuilt) workspace.forget();
-        workspace.start().set_contact_set(start == last ? recorded[step - 1].contact_set : problem.contact_set);
+        workspace.start().set_contact_set(start == last ? recorded[step - 1].contact_set() : problem.contact_set());
         if (flushed) sink = sink + std::accumulate(buffer.begin(), buffer.end(), 0.0);
         const auto from = Clock::now();
         answers[start] = grid_solver->solve(problem.undeformed_distance, fastnorm::Loading<double>::approach(), workspace);
@@ -127,10 +121,7 @@ inline void bench_set_oracle(const wr::Track& track, const wr::Wheelset& wheelse
       }
     }
   }
-  if (counted == 0) {
-    std::printf("set_oracle solver=%s steps=0\n", parsed.label().c_str());
-    return;
-  }
+  if (counted == 0) return no_steps();
   const auto median_us = [&](std::size_t flushed, Start start) { return 1e6 * quantile(seconds[flushed][start], 0.5); };
   std::printf("set_oracle solver=%s steps=%ld last_us=%.1f/%.1f oracle_us=%.1f/%.1f rebuilt_us=%.1f/%.1f "
               "oracle_ratio=%.3f/%.3f iterations_last=%.2f iterations_oracle=%.2f max_force_diff=%.1e\n",
@@ -142,11 +133,9 @@ inline void bench_set_oracle(const wr::Track& track, const wr::Wheelset& wheelse
 }
 
 /// The set_oracle line of every reduced solver of `solvers` whose model starts warm (the loop
-/// this measures), along `steps` poses of the trajectory.
-inline void bench_set_oracles(const std::vector<std::string>& solvers, int steps) {
-  const wr::Track track;
-  const wr::Wheelset wheelset;
-  const auto poses = trajectory_poses(track, wheelset, steps);
+/// this measures), along `poses` (trajectory_poses of `track` and `wheelset`).
+inline void bench_set_oracles(const wr::Track& track, const wr::Wheelset& wheelset,
+                              const std::vector<wr::WheelsetPose>& poses, const std::vector<std::string>& solvers) {
   for (const auto& name : solvers) {
     const TrajectorySolver parsed = TrajectorySolver::parse(name);
     if (parsed.spec.is_reduced() && parsed.options().starts_warm()) bench_set_oracle(track, wheelset, poses, name);

@@ -439,11 +439,11 @@ inline void bench_trial_steps(const wr::Track& track, const wr::Wheelset& wheels
 
 /// Runs NORM first (the reference), then every solver of `solvers`, and prints their lines;
 /// then the warm-versus-cold comparison of every reduced solver that ran both ways, and the
-/// vehicle lines of every reduced solver.
-inline void bench_trajectory(const std::vector<std::string>& solvers, int steps) {
-  const wr::Track track;
-  const wr::Wheelset wheelset;
-  const auto poses = trajectory_poses(track, wheelset, steps);
+/// vehicle lines of every reduced solver, along `poses` (trajectory_poses of `track` and
+/// `wheelset`).
+inline void bench_trajectory(const wr::Track& track, const wr::Wheelset& wheelset,
+                             const std::vector<wr::WheelsetPose>& poses, const std::vector<std::string>& solvers) {
+  const int steps = static_cast<int>(poses.size());
   const auto velocities = trajectory_velocities(wheelset, poses);
   // NORM and every other solver named (a "norm" among them is NORM's run), stepped in
   // turns of interleave_block steps.
