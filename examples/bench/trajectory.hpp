@@ -86,14 +86,18 @@ namespace fastnorm_bench {
 
 namespace wr = fastnorm::wheelrail;
 
+/// The pose of step `step` (1 kHz) of the benchmark trajectory (docs/performance.md §8).
+inline wr::WheelsetPose trajectory_pose(const wr::Track& track, const wr::Wheelset& wheelset, int step) {
+  const double t = 1e-3 * step;
+  auto pose = wr::rigid_contact_pose(track, wheelset, 5e-3 * std::sin(2 * fastnorm::pi<> * t), 3e-3 * std::cos(2 * fastnorm::pi<> * t));
+  pose.z += 0.1e-3 + 20e-6 * std::sin(2 * fastnorm::pi<> * 8 * t);
+  return pose;
+}
+
+/// Its first `steps` poses (about 4 ms each: the roll and drop at which both wheels touch are searched).
 inline std::vector<wr::WheelsetPose> trajectory_poses(const wr::Track& track, const wr::Wheelset& wheelset, int steps) {
   std::vector<wr::WheelsetPose> poses;
-  for (int step = 0; step < steps; ++step) {
-    const double t = 1e-3 * step;
-    auto pose = wr::rigid_contact_pose(track, wheelset, 5e-3 * std::sin(2 * fastnorm::pi<> * t), 3e-3 * std::cos(2 * fastnorm::pi<> * t));
-    pose.z += 0.1e-3 + 20e-6 * std::sin(2 * fastnorm::pi<> * 8 * t);
-    poses.push_back(pose);
-  }
+  for (int step = 0; step < steps; ++step) poses.push_back(trajectory_pose(track, wheelset, step));
   return poses;
 }
 
@@ -500,7 +504,10 @@ inline void bench_trajectory(const wr::Track& track, const wr::Wheelset& wheelse
     }
   }
   const int quarter_period = 250;  // steps: a quarter of the 1 Hz motion at 1 kHz
-  const auto vehicle_poses = trajectory_poses(track, wheelset, steps + 3 * quarter_period);
+  auto vehicle_poses = poses;  // and three quarter periods more for the phase shifts
+  for (int step = steps; step < steps + 3 * quarter_period; ++step) {
+    vehicle_poses.push_back(trajectory_pose(track, wheelset, step));
+  }
   for (const auto& name : solvers) {
     if (!TrajectorySolver::parse(name).spec.is_reduced()) continue;
     bench_vehicle(track, wheelset, vehicle_poses, steps, quarter_period, name);
