@@ -12,6 +12,7 @@
 //   fastnorm-bench --growth [--sizes 30,60,120,240,480,960] [--repeats 3]
 //   fastnorm-bench --trajectory [--steps 2000] [--trajectory-solvers norm,cg,elliptic,elliptic+warm,...]: trajectory.hpp, then
 //     a set_oracle line per warm reduced solver (how much of a solve is the search for its contact set): set_oracle.hpp
+//     a warm_up line per reduced solver (allocations from the first step after a warm-up by trial steps): warm_up.hpp
 //   fastnorm-bench --tangential [--repeats 5] [CASE...]: steady rolling on CONTACT's Hertz examples or the cases, tangential.hpp
 //   fastnorm-bench --creep-accuracy CASE...: FASTSIM and strip theory against the exact path at four adhesion levels, tangential.hpp
 //   fastnorm-bench --table [--repeats 5]: ContactTable lookups, multilinear and PCHIP, table_lookup.hpp
@@ -45,6 +46,7 @@
 #include "table_lookup.hpp"
 #include "tangential.hpp"
 #include "set_oracle.hpp"
+#include "warm_up.hpp"
 
 namespace {
 
@@ -279,6 +281,7 @@ int run(const Arguments& a) {
     const auto poses = fastnorm_bench::trajectory_poses(track, wheelset, a.steps);  // seconds: made once for both
     fastnorm_bench::bench_trajectory(track, wheelset, poses, a.trajectory_solvers);
     fastnorm_bench::bench_set_oracles(track, wheelset, poses, a.trajectory_solvers);
+    fastnorm_bench::bench_warm_ups(track, wheelset, poses, a.trajectory_solvers);
     return 0;
   }
   if (a.table) {

@@ -193,6 +193,42 @@ TEST_CASE("The wheelset contact model allocates nothing per step after warm-up",
   CHECK(allocations == 0);
 }
 
+TEST_CASE("A model warmed up by trial steps allocates nothing from its first step and answers as a fresh one",
+          "[sequence][allocation]") {
+  // docs/wheel-rail.md §9, "Warming up": the poses evaluated between history() and restore()
+  // leave the model's history as it was, and the storage their sizes took with the model.
+  namespace wr = fastnorm::wheelrail;
+  const wr::Track track;
+  const wr::Wheelset wheelset;
+  const auto poses = fastnorm_bench::trajectory_poses(track, wheelset, 60);
+  for (const char* solver : {"elliptic", "cg"}) {
+    INFO(solver);
+    wr::WheelsetContact<> fresh(track, wheelset, coarse_model(solver)), warmed(track, wheelset, coarse_model(solver));
+    {
+      wr::WheelsetContact<>::History start;
+      warmed.history(start);
+      for (std::size_t step = 0; step < poses.size(); step += 2) warmed.evaluate(poses[step]);  // every other pose
+      warmed.restore(start);
+    }
+    std::vector<double> fresh_forces, warmed_forces;
+    const auto normal_force = [](const wr::WheelsetContactResult& result) {
+      return result.wheels[0].normal_force + result.wheels[1].normal_force;
+    };
+    for (const auto& pose : poses) fresh_forces.push_back(normal_force(fresh.evaluate(pose)));
+    warmed_forces.reserve(poses.size());
+    const long allocations = allocations_of([&] {
+      for (const auto& pose : poses) {
+        const auto& result = warmed.evaluate(pose);
+        REQUIRE(result.ok());
+        warmed_forces.push_back(normal_force(result));
+      }
+    });
+    CHECK(allocations == 0);
+    CHECK(warmed_forces == fresh_forces);  // bit for bit
+    CHECK(fresh_forces.front() > 0);
+  }
+}
+
 TEST_CASE("Creep forces in the time loop allocate nothing per step after warm-up", "[sequence][allocation]") {
   namespace wr = fastnorm::wheelrail;
   const wr::Track track;
