@@ -278,7 +278,7 @@ int run(const Arguments& a) {
   if (a.trajectory) {
     const fastnorm::wheelrail::Track track;
     const fastnorm::wheelrail::Wheelset wheelset;
-    const auto poses = fastnorm_bench::trajectory_poses(track, wheelset, a.steps);  // seconds: made once for both
+    const auto poses = fastnorm_bench::trajectory_poses(track, wheelset, a.steps);  // seconds: made once for all
     fastnorm_bench::bench_trajectory(track, wheelset, poses, a.trajectory_solvers);
     fastnorm_bench::bench_set_oracles(track, wheelset, poses, a.trajectory_solvers);
     fastnorm_bench::bench_warm_ups(track, wheelset, poses, a.trajectory_solvers);

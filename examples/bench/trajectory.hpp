@@ -103,17 +103,24 @@ inline std::vector<wr::WheelsetPose> trajectory_poses(const wr::Track& track, co
 
 inline constexpr double trajectory_speed = 30;  // m/s
 
-/// The wheelset's velocities along `poses` (1 kHz): forward at trajectory_speed, rolling
-/// at −V/r0, the pose's rates by central differences (one-sided at the ends).
+/// Forward at trajectory_speed, rolling without slip at the nominal radius (pitch rate
+/// −V/r0), every other rate zero.
+inline wr::WheelsetVelocity rolling_velocity(const wr::Wheelset& wheelset) {
+  wr::WheelsetVelocity velocity;
+  velocity.forward = trajectory_speed;
+  velocity.pitch_rate = -trajectory_speed / wheelset.layout().nominal_radius;
+  return velocity;
+}
+
+/// The wheelset's velocities along `poses` (1 kHz): rolling_velocity plus the pose's rates
+/// by central differences (one-sided at the ends).
 inline std::vector<wr::WheelsetVelocity> trajectory_velocities(const wr::Wheelset& wheelset,
                                                               const std::vector<wr::WheelsetPose>& poses) {
-  std::vector<wr::WheelsetVelocity> velocities(poses.size());
+  std::vector<wr::WheelsetVelocity> velocities(poses.size(), rolling_velocity(wheelset));
   for (std::size_t step = 0; step < poses.size(); ++step) {
     const std::size_t before = step > 0 ? step - 1 : step, after = step + 1 < poses.size() ? step + 1 : step;
     const double span = 1e-3 * static_cast<double>(after - before);
     auto& velocity = velocities[step];
-    velocity.forward = trajectory_speed;
-    velocity.pitch_rate = -trajectory_speed / wheelset.layout().nominal_radius;
     if (span == 0) continue;
     velocity.lateral = (poses[after].y - poses[before].y) / span;
     velocity.vertical = (poses[after].z - poses[before].z) / span;

@@ -66,9 +66,7 @@ inline void bench_warm_up(const wr::Track& track, const wr::Wheelset& wheelset, 
   };
   wr::WheelsetContact<> fresh(track, wheelset, parsed.options()), warmed(track, wheelset, parsed.options());
   {
-    wr::WheelsetVelocity rolling;  // the storage of creep forces too; its size is the patches'
-    rolling.forward = trajectory_speed;
-    rolling.pitch_rate = -trajectory_speed / wheelset.layout().nominal_radius;
+    const auto rolling = rolling_velocity(wheelset);  // the storage of creep forces too: its size is the patches'
     wr::WheelsetContact<>::History start;
     warmed.history(start);
     for (const auto& pose : envelope) warmed.evaluate(pose, rolling);
