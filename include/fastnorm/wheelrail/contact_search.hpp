@@ -394,7 +394,10 @@ inline GapSample smallest_gap(const Track& track, const Wheelset& wheelset, Side
 /// (which continues from its previous call); returns how many. The regions after those are
 /// spares: `regions` never shrinks, so that it and its regions' slices keep their storage
 /// from call to call, also when the patch count drops, and a time loop's search stops
-/// allocating.
+/// allocating. A region's slices are given room for all the sampler's samples when the
+/// region is first used (about 200 KB with the default step), so that no later call, however
+/// long its regions, grows them: a search allocates only when it meets more regions than any
+/// call before it.
 inline std::size_t contact_regions(const Track& track, const Wheelset& wheelset, Side side, const WheelsetPose& pose,
                                    const SearchOptions& options, GapSampler& sampler,
                                    std::vector<ContactRegion>& regions) {
@@ -409,6 +412,7 @@ inline std::size_t contact_regions(const Track& track, const Wheelset& wheelset,
         region.side = side;
         region.deepest = samples[k];
         region.slices.clear();
+        region.slices.reserve(samples.size());  // room for every sample: a slot allocates once
       }
       auto& region = regions[count - 1];
       region.slices.push_back(samples[k]);
