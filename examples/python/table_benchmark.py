@@ -6,7 +6,7 @@ direct evaluation. A benchmark, not a test: it prints figures.
     python3 table_benchmark.py accuracy [--queries 300] [--elements 40] [--yaws 3] [--loads 3] [--store DIR]
                                         [--derivative-step M]
     python3 table_benchmark.py flange-steps [--elements 40] [--steps 0.05,0.025,0.0125] [--derivative-step M]
-    python3 table_benchmark.py lobes [--region tread|flange] [--elements 40]
+    python3 table_benchmark.py lobes [--region tread|flange] [--elements 40] [--derivative-step M]
 
 throughput: 400 equilibria (y -6…6 mm, 4 yaws, one load, CG) built serially in this process,
 by a process pool of two workers, by a Dask LocalCluster of two single-thread workers started
@@ -216,9 +216,10 @@ LOBE_REGIONS = {"tread": {"start": -4e-3, "stop": 4e-3, "step": 0.25e-3},
                 "flange": {"start": 4e-3, "stop": 7e-3, "step": 0.05e-3}}
 
 
-def lobes(elements, region):
+def lobes(elements, region, derivative_step=None):
     spec = {"lateral_shift_m": [LOBE_REGIONS[region]], "yaw_rad": [0.0, 4e-3, 8e-3],
-            "load_n": [1.5e5, 2e5, 2.5e5], "solver": "cg", "elements": elements, "chunk_size": 20}
+            "load_n": [1.5e5, 2e5, 2.5e5], "solver": "cg", "elements": elements, "chunk_size": 20,
+            "shift_derivative_step": derivative_step}
     compared = {"max_pressure": [], "max_pressure_by_lobes": []}
     largest_at = {}
     for where, patch_differences in filter(None, _along_y(spec, 1.0)):
@@ -227,7 +228,7 @@ def lobes(elements, region):
             if patch_differences[name] >= largest_at.get(name, (-1.0, ""))[0]:
                 largest_at[name] = (patch_differences[name], where)
     for name, values in compared.items():
-        print(f"lobes region={region} elements={elements} {name}: patches={len(values)} max={max(values):.3g} "
+        print(f"lobes region={region} elements={elements} derivative_step={derivative_step} {name}: patches={len(values)} max={max(values):.3g} "
               f"p95={np.percentile(values, 95):.3g} median={np.median(values):.3g} largest_at {largest_at[name][1]}")
 
 
@@ -248,7 +249,7 @@ def main():
     if args.what == "throughput":
         throughput(args.repeats, args.elements or 30)
     elif args.what == "lobes":
-        lobes(args.elements or 40, args.region)
+        lobes(args.elements or 40, args.region, args.derivative_step)
     elif args.what == "flange-steps":
         flange_steps(args.elements or 40, [float(step) * 1e-3 for step in args.steps.split(",")], args.derivative_step)
     else:
