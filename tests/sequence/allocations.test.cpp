@@ -319,6 +319,43 @@ TEST_CASE("Patches that appear, merge and vanish keep their storage: a repeated 
   CHECK(allocations == 0);
 }
 
+TEST_CASE("The search's regions keep room for every sample: a longer region allocates nothing",
+          "[sequence][allocation]") {
+  // contact_regions gives a region slot room for all the sampler's samples when it is first
+  // used (docs/wheel-rail.md §9, "Warming up"): after a shallow pose, a pose pressed three
+  // times deeper, whose region holds more than twice the samples (more than a vector grown
+  // by doubling would have room for), grows nothing.
+  namespace wr = fastnorm::wheelrail;
+  const wr::Track track;
+  const wr::Wheelset wheelset;
+  const wr::SearchOptions search;
+  wr::GapSampler sampler;
+  std::vector<wr::ContactRegion> regions;
+  const auto pressed = [&](double depth) {
+    auto pose = wr::rigid_contact_pose(track, wheelset, 1e-3, 0);
+    pose.z += depth;
+    return pose;
+  };
+  const wr::WheelsetPose shallow = pressed(0.02e-3), deep = pressed(0.06e-3);
+  // The sampler meets both poses first, with regions of its own (its storage is not under
+  // test); the slot under test is then first used by the shallow pose alone.
+  {
+    std::vector<wr::ContactRegion> met;
+    for (const auto& pose : {shallow, deep}) {
+      wr::contact_regions(track, wheelset, wr::Side::right, pose, search, sampler, met);
+    }
+  }
+  REQUIRE(wr::contact_regions(track, wheelset, wr::Side::right, shallow, search, sampler, regions) == 1);
+  const std::size_t shallow_slices = regions[0].slices.size();
+  std::size_t count = 0;
+  const long allocations = allocations_of(
+      [&] { count = wr::contact_regions(track, wheelset, wr::Side::right, deep, search, sampler, regions); });
+  REQUIRE(count == 1);
+  INFO("slices: shallow " << shallow_slices << ", deep " << regions[0].slices.size());
+  CHECK(regions[0].slices.size() > 2 * shallow_slices);
+  CHECK(allocations == 0);
+}
+
 TEST_CASE("Trial steps restored allocate nothing after warm-up: no storage piles up", "[sequence][allocation]") {
   // An integrator's trial steps (docs/wheel-rail.md §9): at every step the history taken
   // into one History kept from step to step, a trial pose evaluated, the history restored,
