@@ -53,7 +53,8 @@ void copy_keeping_storage(const std::vector<T>& from, std::vector<T>& to, std::v
 /// One solver per grid size met (element sizes fixed: solvers do not depend on the grid's
 /// origin), each with its influence table, and the workspaces with its storage that no
 /// patch holds at the moment. The solvers of a reduced kind share one set of segment
-/// tables, those of a solver on the largest box (share_tables).
+/// tables, those of a solver on the largest box (share_tables); when those are all built
+/// ahead, so are the solvers of every lattice box size they cover.
 template <typename Solver>
 class SolverCache {
  public:
@@ -62,12 +63,27 @@ class SolverCache {
   /// Makes the solver on `largest` whose segment tables the solvers of every grid it covers
   /// share (ReducedSolver::for_grid), and builds them all now if together they fit the
   /// spec's budget (ReducedSolver::build_tables), if `spec` is of a reduced kind and
-  /// `Solver` shares tables; else nothing (each solver keeps its own tables).
-  void share_tables(const Grid<double>& largest, const SolverSpec<double>& spec, const Material<double>& material) {
+  /// `Solver` shares tables; else nothing (each solver keeps its own tables). When it builds
+  /// them, it also builds the solver of every grid within `largest` whose sides are
+  /// multiples of `quantum` (the lattice's box sizes, patch_lattice.hpp), each with room for
+  /// its spares, so that a step meeting a box size for the first time builds nothing
+  /// (docs/wheel-rail.md §9): (mx/quantum)·(my/quantum) small solvers, 144 for a 96-element
+  /// box, each a view of the shared coefficients and tables.
+  void share_tables(const Grid<double>& largest, Eigen::Index quantum, const SolverSpec<double>& spec,
+                    const Material<double>& material) {
     if constexpr (fastnorm::detail::shares_tables<Solver>) {
       if (!spec.is_reduced()) return;
       family_.emplace(SolverFromSpec<Solver>::make(spec, largest, material));
       tables_built_ = family_->build_tables();
+      if (!tables_built_) return;
+      quantum_ = quantum;
+      lattice_rows_ = largest.mx() / quantum, lattice_columns_ = largest.my() / quantum;
+      slots_.reserve(static_cast<std::size_t>(lattice_rows_ * lattice_columns_));
+      for (Eigen::Index a = 1; a <= lattice_rows_; ++a) {
+        for (Eigen::Index b = 1; b <= lattice_columns_; ++b) {
+          add_slot(family_->for_grid(Grid<double>(a * quantum, b * quantum, largest.dx(), largest.dy())));
+        }
+      }
     }
   }
 
@@ -77,12 +93,16 @@ class SolverCache {
   /// The number of the solver of `grid`'s size, built from `spec` and `material` when it is
   /// met for the first time.
   std::size_t index_for(const Grid<double>& grid, const SolverSpec<double>& spec, const Material<double>& material) {
+    if (quantum_ > 0 && grid.mx() % quantum_ == 0 && grid.my() % quantum_ == 0 &&
+        grid.mx() <= lattice_rows_ * quantum_ && grid.my() <= lattice_columns_ * quantum_) {
+      // share_tables' solvers come first, by rows of the lattice's sizes
+      return static_cast<std::size_t>((grid.mx() / quantum_ - 1) * lattice_columns_ + grid.my() / quantum_ - 1);
+    }
     for (std::size_t s = 0; s < slots_.size(); ++s) {
       const auto& known = slots_[s].solver.grid();
       if (known.mx() == grid.mx() && known.my() == grid.my()) return s;
     }
-    slots_.push_back({make(grid, spec, material), {}});
-    slots_.back().spare.reserve(spare_room);
+    add_slot(make(grid, spec, material));
     return slots_.size() - 1;
   }
 
@@ -117,6 +137,11 @@ class SolverCache {
   void give_back(std::size_t s, Workspace&& workspace) { slots_[s].spare.push_back(std::move(workspace)); }
 
  private:
+  void add_slot(Solver&& solver) {
+    slots_.push_back({std::move(solver), {}});
+    slots_.back().spare.reserve(spare_room);
+  }
+
   Solver make(const Grid<double>& grid, const SolverSpec<double>& spec, const Material<double>& material) const {
     if constexpr (fastnorm::detail::shares_tables<Solver>) {
       if (family_) return family_->for_grid(grid);
@@ -131,6 +156,9 @@ class SolverCache {
   std::vector<Slot> slots_;
   std::optional<Solver> family_;  // share_tables' solver on the largest box, never solving
   bool tables_built_ = false;
+  // The lattice's box sizes built by share_tables: sides multiples of quantum_ up to
+  // lattice_rows_ and lattice_columns_ quanta (quantum_ 0: none built).
+  Eigen::Index quantum_ = 0, lattice_rows_ = 0, lattice_columns_ = 0;
 };
 
 /// Result storage that no result patch holds at the moment, by length: Eigen's vectors keep

@@ -104,7 +104,7 @@ class WheelsetContact {
     check_spec_for<Solver>(options_.solver, "WheelsetContactOptions: solver");
     choose_element_sizes();
     const Eigen::Index box = options_.table_box();
-    solvers_.share_tables(Grid<double>(box, box, dx_, ds_), options_.solver, options_.material);
+    solvers_.share_tables(Grid<double>(box, box, dx_, ds_), detail::box_quantum, options_.solver, options_.material);
   }
 
   const WheelsetContactOptions& options() const { return options_; }
@@ -116,7 +116,9 @@ class WheelsetContact {
 
   /// How many solvers (grid sizes) the model has built so far: each holds its influence
   /// table, and those of a reduced kind share the segment tables of boxes up to
-  /// options().table_box() elements.
+  /// options().table_box() elements. When those tables are built with the model
+  /// (tables_built), so is the solver of every box size up to that box whose sides are
+  /// multiples of 8 elements (the lattice's sizes: 144 for a 96-element box).
   std::size_t solver_count() const { return solvers_.size(); }
 
   /// Whether the model built every segment table of its reduced solvers when it was built
