@@ -76,14 +76,13 @@ class SolverCache {
       family_.emplace(SolverFromSpec<Solver>::make(spec, largest, material));
       tables_built_ = family_->build_tables();
       if (!tables_built_) return;
-      quantum_ = quantum;
-      lattice_rows_ = largest.mx() / quantum, lattice_columns_ = largest.my() / quantum;
-      slots_.reserve(static_cast<std::size_t>(lattice_rows_ * lattice_columns_));
-      for (Eigen::Index a = 1; a <= lattice_rows_; ++a) {
-        for (Eigen::Index b = 1; b <= lattice_columns_; ++b) {
-          add_slot(family_->for_grid(Grid<double>(a * quantum, b * quantum, largest.dx(), largest.dy())));
+      slots_.reserve(static_cast<std::size_t>((largest.mx() / quantum) * (largest.my() / quantum)));
+      for (Eigen::Index mx = quantum; mx <= largest.mx(); mx += quantum) {
+        for (Eigen::Index my = quantum; my <= largest.my(); my += quantum) {
+          index_for(Grid<double>(mx, my, largest.dx(), largest.dy()), spec, material);
         }
       }
+      quantum_ = quantum;  // from now on index_for finds them by their sizes alone
     }
   }
 
@@ -93,16 +92,20 @@ class SolverCache {
   /// The number of the solver of `grid`'s size, built from `spec` and `material` when it is
   /// met for the first time.
   std::size_t index_for(const Grid<double>& grid, const SolverSpec<double>& spec, const Material<double>& material) {
-    if (quantum_ > 0 && grid.mx() % quantum_ == 0 && grid.my() % quantum_ == 0 &&
-        grid.mx() <= lattice_rows_ * quantum_ && grid.my() <= lattice_columns_ * quantum_) {
-      // share_tables' solvers come first, by rows of the lattice's sizes
-      return static_cast<std::size_t>((grid.mx() / quantum_ - 1) * lattice_columns_ + grid.my() / quantum_ - 1);
+    if (quantum_ > 0) {  // share_tables' solvers come first, by rows of the lattice's sizes
+      const Grid<double>& largest = family_->grid();
+      if (grid.mx() % quantum_ == 0 && grid.my() % quantum_ == 0 && grid.mx() <= largest.mx() &&
+          grid.my() <= largest.my()) {
+        const Eigen::Index row = grid.mx() / quantum_ - 1, column = grid.my() / quantum_ - 1;
+        return static_cast<std::size_t>(row * (largest.my() / quantum_) + column);
+      }
     }
     for (std::size_t s = 0; s < slots_.size(); ++s) {
       const auto& known = slots_[s].solver.grid();
       if (known.mx() == grid.mx() && known.my() == grid.my()) return s;
     }
-    add_slot(make(grid, spec, material));
+    slots_.push_back({make(grid, spec, material), {}});
+    slots_.back().spare.reserve(spare_room);
     return slots_.size() - 1;
   }
 
@@ -137,11 +140,6 @@ class SolverCache {
   void give_back(std::size_t s, Workspace&& workspace) { slots_[s].spare.push_back(std::move(workspace)); }
 
  private:
-  void add_slot(Solver&& solver) {
-    slots_.push_back({std::move(solver), {}});
-    slots_.back().spare.reserve(spare_room);
-  }
-
   Solver make(const Grid<double>& grid, const SolverSpec<double>& spec, const Material<double>& material) const {
     if constexpr (fastnorm::detail::shares_tables<Solver>) {
       if (family_) return family_->for_grid(grid);
@@ -156,9 +154,8 @@ class SolverCache {
   std::vector<Slot> slots_;
   std::optional<Solver> family_;  // share_tables' solver on the largest box, never solving
   bool tables_built_ = false;
-  // The lattice's box sizes built by share_tables: sides multiples of quantum_ up to
-  // lattice_rows_ and lattice_columns_ quanta (quantum_ 0: none built).
-  Eigen::Index quantum_ = 0, lattice_rows_ = 0, lattice_columns_ = 0;
+  // The side step of the box sizes share_tables built, up to family_'s grid (0: none built).
+  Eigen::Index quantum_ = 0;
 };
 
 /// Result storage that no result patch holds at the moment, by length: Eigen's vectors keep
