@@ -54,10 +54,10 @@
 // medians per step of both wheels; differing_steps counts the steps whose force is not that
 // of a model evaluated at the steps alone, to the last bit (0 is the contract).
 //
-// "+cap<N>" (e.g. elliptic+cap3) stops every patch solve after N iterations
-// (SolverSpec::set_max_iterations), and the next step goes on from where it stopped
-// (docs/wheel-rail.md §9, the iteration budget); limited_solves counts the patch solves
-// that ended so.
+// "+cap<N>" (e.g. elliptic+cap3) stops every warm-started patch solve after N iterations
+// (WheelsetContactOptions::warm_solve_iterations) with its last admissible iterate, and the
+// next step goes on from where it stopped (docs/wheel-rail.md §9, a cap per warm solve);
+// limited_solves counts the patch solves that ended so.
 //
 // Times are medians per wheel per step (p99 of the total); errors and contact-set
 // differences against NORM on the same h at every 20th step (on the same grids: the grids
