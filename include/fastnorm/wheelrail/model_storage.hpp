@@ -10,6 +10,7 @@
 #include <utility>
 #include <vector>
 
+#include "fastnorm/error.hpp"
 #include "fastnorm/grid.hpp"
 #include "fastnorm/material.hpp"
 #include "fastnorm/solver_from_spec.hpp"
@@ -68,10 +69,12 @@ class SolverCache {
   /// multiples of `quantum` (the lattice's box sizes, patch_lattice.hpp), each with room for
   /// its spares, so that a step meeting a box size for the first time builds nothing
   /// (docs/wheel-rail.md §9): (mx/quantum)·(my/quantum) small solvers, 144 for a 96-element
-  /// box, each a view of the shared coefficients and tables.
+  /// box, each a view of the shared coefficients and tables. Called once, on an empty cache
+  /// (the model's constructor): index_for then finds those solvers by their position.
   void share_tables(const Grid<double>& largest, Eigen::Index quantum, const SolverSpec<double>& spec,
                     const Material<double>& material) {
     if constexpr (fastnorm::detail::shares_tables<Solver>) {
+      FASTNORM_ASSERT(slots_.empty() && !family_);  // index_for counts on the lattice's solvers coming first
       if (!spec.is_reduced()) return;
       family_.emplace(SolverFromSpec<Solver>::make(spec, largest, material));
       tables_built_ = family_->build_tables();
