@@ -1,6 +1,4 @@
 // fastnorm-solve as a user runs it: output line, --write-case, exit statuses, messages.
-#include <unistd.h>
-
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <cstdio>
@@ -11,6 +9,7 @@
 
 #include "support/peer_cases.hpp"
 #include "support/run_command.hpp"
+#include "support/scratch_directory.hpp"
 #include "support/surfaces.hpp"
 
 using Catch::Matchers::Contains;
@@ -23,12 +22,8 @@ using fastnorm::test::Outcome;
 
 Outcome run_solver(const std::string& arguments) { return fastnorm::test::run_command(FASTNORM_SOLVE_EXE, arguments); }
 
-// A scratch folder per test run.
-fs::path scratch() {
-  const fs::path dir = fs::temp_directory_path() / ("fastnorm_cli_" + std::to_string(getpid()));
-  fs::create_directories(dir);
-  return dir;
-}
+// A scratch folder per test case, removed when it ends.
+fastnorm::test::ScratchDirectory scratch() { return fastnorm::test::ScratchDirectory("fastnorm_cli_"); }
 
 // A small sphere problem in force control, written as a case without a result.
 fs::path write_sphere_case(const fs::path& dir) {
@@ -46,7 +41,8 @@ fs::path write_sphere_case(const fs::path& dir) {
 }  // namespace
 
 TEST_CASE("fastnorm-solve solves a case, writes it back and compares with its result", "[cli]") {
-  const fs::path dir = scratch();
+  const auto scratch_dir = scratch();
+  const fs::path& dir = scratch_dir.path();
   const fs::path input = write_sphere_case(dir), output = dir / "solved.case";
 
   const auto first = run_solver(input.string() + " --write-case " + output.string());
@@ -79,11 +75,11 @@ TEST_CASE("fastnorm-solve solves a case, writes it back and compares with its re
   CHECK(approach.status == 0);
   CHECK(field(approach.output, "fn") == 0);
   CHECK(field(approach.output, "ncontact") == 0);
-  fs::remove_all(dir);
 }
 
 TEST_CASE("fastnorm-solve runs a reduced solver and compares it with full NORM", "[cli]") {
-  const fs::path dir = scratch();
+  const auto scratch_dir = scratch();
+  const fs::path& dir = scratch_dir.path();
   const fs::path input = write_sphere_case(dir);
   const auto outcome = run_solver(input.string() + " --solver polynomial-edge:4:2 --compare");
   INFO(outcome.output);
@@ -94,11 +90,11 @@ TEST_CASE("fastnorm-solve runs a reduced solver and compares it with full NORM",
   CHECK(field(outcome.output, "contact_mismatch_vs_norm") >= 0);
   CHECK(field(outcome.output, "max_dp_over_pmax_vs_norm") < 0.1);
   CHECK(field(outcome.output, "speedup_vs_norm") > 0);
-  fs::remove_all(dir);
 }
 
 TEST_CASE("fastnorm-solve runs the CG solver with the contact set and force of NORM", "[cli][cg]") {
-  const fs::path dir = scratch();
+  const auto scratch_dir = scratch();
+  const fs::path& dir = scratch_dir.path();
   const fs::path input = write_sphere_case(dir);
   const auto outcome = run_solver(input.string() + " --solver cg --compare");
   INFO(outcome.output);
@@ -107,11 +103,11 @@ TEST_CASE("fastnorm-solve runs the CG solver with the contact set and force of N
   CHECK(field(outcome.output, "approach") > 0);
   CHECK(field(outcome.output, "contact_mismatch_vs_norm") == 0);
   CHECK(field(outcome.output, "max_dp_over_pmax_vs_norm") < 1e-6);
-  fs::remove_all(dir);
 }
 
 TEST_CASE("fastnorm-solve rejects bad input with status 2 and writes nothing", "[cli]") {
-  const fs::path dir = scratch();
+  const auto scratch_dir = scratch();
+  const fs::path& dir = scratch_dir.path();
   const fs::path good = write_sphere_case(dir), bad = dir / "bad.case", out = dir / "out.case";
   std::ofstream(bad) << "fastnorm-case 1\nname bad\nsource test\ngrid mx 2 my 2 dx 1e-4 dy -1e-4 x0 0 y0 0\n";
 
@@ -130,13 +126,13 @@ TEST_CASE("fastnorm-solve rejects bad input with status 2 and writes nothing", "
     CHECK_THAT(outcome.output, Contains(c.message));
     CHECK_FALSE(fs::exists(out));
   }
-  fs::remove_all(dir);
 }
 
 TEST_CASE("fastnorm-solve fails clearly on the issue-15 inputs", "[cli]") {
   // Each was a crash (std::bad_alloc, exit 134) or a wrong answer with a clean status (the
   // final check of an answer, E = 1e30, is tested in tests/norm/norm_solver.test.cpp).
-  const fs::path dir = scratch();
+  const auto scratch_dir = scratch();
+  const fs::path& dir = scratch_dir.path();
   const fs::path good = write_sphere_case(dir);
   std::ifstream in(good);
   const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
@@ -158,7 +154,6 @@ TEST_CASE("fastnorm-solve fails clearly on the issue-15 inputs", "[cli]") {
   CHECK_THAT(edge.output, Contains("warning: the contact reaches the edge of the grid"));
   CHECK(field(edge.output, "at_edge") == 1);
   CHECK(field(run_solver(good.string()).output, "at_edge") == 0);
-  fs::remove_all(dir);
 }
 
 TEST_CASE("fastnorm-solve reproduces a CONTACT peer case", "[cli][peer]") {
@@ -178,7 +173,8 @@ TEST_CASE("fastnorm-solve reproduces a CONTACT peer case", "[cli][peer]") {
 TEST_CASE("fastnorm-solve --friction adds the steady-rolling creep forces", "[cli][tangential]") {
   // A sphere rolling towards +x: at ξ = 0.1 every element slides and Fx = −μ Fn; Coulomb's
   // law is odd, so −ξ gives the opposite forces and the same areas.
-  const fs::path input = write_sphere_case(scratch());
+  const auto scratch_dir = scratch();
+  const fs::path input = write_sphere_case(scratch_dir.path());
   const auto sliding = run_solver(input.string() + " --quiet --friction 0.3 --creepage-x 0.1");
   REQUIRE(sliding.status == 0);
   INFO(sliding.output);
@@ -219,7 +215,8 @@ TEST_CASE("fastnorm-solve --friction adds the steady-rolling creep forces", "[cl
 TEST_CASE("fastnorm-solve rolls a case's tangential line, and --write-case keeps it", "[cli][tangential]") {
   // The options on the plain case and the case's own line give the same answer; the options
   // replace the line; a case written after a solve with --friction holds the line.
-  const fs::path dir = scratch();
+  const auto scratch_dir = scratch();
+  const fs::path& dir = scratch_dir.path();
   const fs::path input = write_sphere_case(dir);
   auto problem = fastnorm::read_case_file(input.string());
   problem.rolling = fastnorm::CaseRolling<>{0.3, {}, fastnorm::RollingDirection::negative_x};
@@ -258,7 +255,8 @@ TEST_CASE("fastnorm-solve rolls a case's tangential line, and --write-case keeps
 TEST_CASE("fastnorm-solve --tangential strip and fastsim give the fast paths' creep forces", "[cli][tangential]") {
   // Full sliding is the fast paths' as the exact path's, Fx = −μ Fn; in partial slip they
   // differ from it by a few percent of μFn on this sphere (docs/validation.md §7).
-  const fs::path input = write_sphere_case(scratch());
+  const auto scratch_dir = scratch();
+  const fs::path input = write_sphere_case(scratch_dir.path());
   const auto exact = run_solver(input.string() + " --quiet --friction 0.3 --creepage-x 1e-3 --creepage-y 4e-4");
   for (const std::string method : {"strip", "fastsim"}) {
     const auto sliding =

@@ -1,6 +1,5 @@
 // fastnorm-wheelrail as a user runs it: one line per patch with the specified fields,
 // the single-wheel mode against CONTACT, --compare, --write-case, --svg, exit statuses.
-#include <unistd.h>
 
 #include <catch2/catch.hpp>
 #include <cstdio>
@@ -13,6 +12,7 @@
 
 #include "support/peer_cases.hpp"
 #include "support/run_command.hpp"
+#include "support/scratch_directory.hpp"
 
 using Catch::Matchers::Contains;
 namespace fs = std::filesystem;
@@ -58,8 +58,8 @@ TEST_CASE("fastnorm-wheelrail prints one line per patch", "[cli][wheelrail]") {
 }
 
 TEST_CASE("fastnorm-wheelrail single-wheel mode writes cases and drawings", "[cli][wheelrail]") {
-  const fs::path dir = fs::temp_directory_path() / ("fastnorm_wheelrail_" + std::to_string(getpid()));
-  fs::create_directories(dir);
+  const fastnorm::test::ScratchDirectory scratch_dir("fastnorm_wheelrail_");
+  const fs::path& dir = scratch_dir.path();
   const auto run = run_wheelrail("--fz 1e5 --wheel right --y 0 --elements 30 --write-case " + (dir / "p").string() +
                                  " --svg " + (dir / "p").string());
   REQUIRE(run.status == 0);
@@ -78,7 +78,6 @@ TEST_CASE("fastnorm-wheelrail single-wheel mode writes cases and drawings", "[cl
   std::string first;
   std::getline(svg, first);
   CHECK_THAT(first, Contains("<svg"));
-  fs::remove_all(dir);
 }
 
 TEST_CASE("fastnorm-wheelrail refuses bad input with status 2", "[cli][wheelrail]") {
@@ -288,8 +287,8 @@ TEST_CASE("fastnorm-wheelrail --write-case with --friction writes cases fastnorm
           "[cli][wheelrail][tangential]") {
   // Each patch's case holds its tangential line; fastnorm-solve, given nothing but the case,
   // solves the same normal and steady-rolling problems: the same fx, fs, mn and areas.
-  const fs::path dir = fs::temp_directory_path() / ("fastnorm_wheelrail_rolling_" + std::to_string(getpid()));
-  fs::create_directories(dir);
+  const fastnorm::test::ScratchDirectory scratch_dir("fastnorm_wheelrail_rolling_");
+  const fs::path& dir = scratch_dir.path();
   const auto run = run_wheelrail("--fz 1e5 --wheel right --y 0 --elements 30 --friction 0.3 --creepage-x 1e-3 "
                                  "--creepage-y 5e-4 --spin 0.5 --tangential strip --write-case " +
                                  (dir / "p").string());
@@ -306,5 +305,4 @@ TEST_CASE("fastnorm-wheelrail --write-case with --friction writes cases fastnorm
     CHECK(field(solved.output, name) == Approx(field(run.output, name)).epsilon(1e-5));  // printed to 6 digits
   }
   CHECK(field(solved.output, "nadh") == field(run.output, "nadh"));
-  fs::remove_all(dir);
 }

@@ -6,14 +6,13 @@
 #include <fastnorm/wheelrail/profile_file.hpp>
 #include <fastnorm/wheelrail/uic60.hpp>
 
-#include <unistd.h>
-
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 
 #include "support/peer_cases.hpp"
+#include "support/scratch_directory.hpp"
 
 using Catch::Matchers::Contains;
 
@@ -151,8 +150,8 @@ TEST_CASE("The MBench UIC60 file is the MB variant, canted 1:40", "[wheelrail][p
 
 TEST_CASE("Profile files: plain text, SIMPACK flags and errors", "[wheelrail][profiles]") {
   namespace fs = std::filesystem;
-  const fs::path dir = fs::temp_directory_path() / ("fastnorm_profiles_" + std::to_string(::getpid()));
-  fs::create_directories(dir);
+  const fastnorm::test::ScratchDirectory scratch_dir("fastnorm_profiles_");
+  const fs::path& dir = scratch_dir.path();
   // A circle of radius 20 mm sampled in mm, written both ways.
   std::ofstream(dir / "plain.txt") << "# y z (mm)\n-3 0.2254\n-1 0.0250\n0 0\n1 0.0250\n3 0.2254 1.0\n";
   std::ofstream(dir / "flags.prr") << "  mirror.y = 1 ! flip\n  inversion = 1\n  shift.z = +1.0e+00\n"
@@ -196,7 +195,6 @@ TEST_CASE("Profile files: plain text, SIMPACK flags and errors", "[wheelrail][pr
   // Points 5e-77 m apart (found by tests/fuzz/profile_reader) overflowed the spline.
   fastnorm::wheelrail::ProfilePoints crowded{{-3e-5, -5e-77, 0}, {-0.04, 0, 0}};
   CHECK_THROWS_WITH(fastnorm::wheelrail::SplineProfile(crowded), Contains("closer than 1 nm, at point") && Contains("got 2"));
-  fs::remove_all(dir);
 }
 
 TEST_CASE("ProfileCurve: built-in kinds, a spline and a function of one's own; bad curves refused",
