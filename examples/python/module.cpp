@@ -387,35 +387,20 @@ class PyWheelset {
   PyWheelset(const wr::WheelsetOnTrack& setup, const wr::WheelsetContactOptions& options)
       : model_(setup.track(), setup.wheelset(), options) {}
 
+  // The arrays are made from the model's own result while the model stays locked, so the
+  // result is copied once, into them (docs/bindings.md, "Results are copies"). The GIL is
+  // released while waiting for the lock and while solving, and taken back for the arrays;
+  // no call takes calls_ while it holds the GIL, so the two cannot deadlock.
   PyWheelsetResult evaluate(const wr::WheelsetPose& pose, const std::optional<wr::WheelsetVelocity>& velocity) {
-    std::optional<wr::WheelsetContactResult> result;
-    {
-      py::gil_scoped_release released;
-      const std::lock_guard<std::mutex> lock(calls_);
-      result = velocity ? model_.evaluate(pose, *velocity) : model_.evaluate(pose);
-    }
-    PyWheelsetResult out;
-    out.pose = result->pose;
-    for (const auto& wheel : result->wheels) {
-      PyWheel copy;
-      copy.side = wr::to_string(wheel.side);
-      for (const auto& patch : wheel.patches) copy.patches.push_back(to_python(patch, model_.wheelset()));
-      copy.force = vector3(wheel.force);
-      copy.moment = vector3(wheel.moment);
-      copy.normal_force = wheel.normal_force;
-      copy.flange_climb = wheel.flange_climb;
-      copy.status = wheel.status;
-      copy.iterations = wheel.iterations;
-      out.wheels.push_back(std::move(copy));
-    }
-    out.force = vector3(result->force);
-    out.moment = vector3(result->moment);
-    out.status = result->status;
-    out.iterations = result->iterations;
-    return out;
+    py::gil_scoped_release released;
+    const std::lock_guard<std::mutex> lock(calls_);
+    const wr::WheelsetContactResult& result = velocity ? model_.evaluate(pose, *velocity) : model_.evaluate(pose);
+    py::gil_scoped_acquire held;
+    return converted(result);
   }
 
   void set_iteration_budget(int iterations) {
+    py::gil_scoped_release released;
     const std::lock_guard<std::mutex> lock(calls_);
     model_.set_iteration_budget(iterations);
   }
@@ -453,23 +438,48 @@ class PyWheelset {
   }
 
   void reset() {
+    py::gil_scoped_release released;
     const std::lock_guard<std::mutex> lock(calls_);
     model_.reset();
   }
 
   void save_history() {
+    py::gil_scoped_release released;
     const std::lock_guard<std::mutex> lock(calls_);
     model_.history(saved_);
     has_saved_ = true;
   }
 
   void restore_history() {
+    py::gil_scoped_release released;
     const std::lock_guard<std::mutex> lock(calls_);
     FASTNORM_CHECK(has_saved_, "WheelsetContact.restore_history: no history saved (save_history first)");
     model_.restore(saved_);
   }
 
  private:
+  PyWheelsetResult converted(const wr::WheelsetContactResult& result) const {
+    PyWheelsetResult out;
+    out.pose = result.pose;
+    for (const auto& wheel : result.wheels) {
+      PyWheel copy;
+      copy.side = wr::to_string(wheel.side);
+      for (const auto& patch : wheel.patches) copy.patches.push_back(to_python(patch, model_.wheelset()));
+      copy.force = vector3(wheel.force);
+      copy.moment = vector3(wheel.moment);
+      copy.normal_force = wheel.normal_force;
+      copy.flange_climb = wheel.flange_climb;
+      copy.status = wheel.status;
+      copy.iterations = wheel.iterations;
+      out.wheels.push_back(std::move(copy));
+    }
+    out.force = vector3(result.force);
+    out.moment = vector3(result.moment);
+    out.status = result.status;
+    out.iterations = result.iterations;
+    return out;
+  }
+
   wr::WheelsetContact<> model_;
   wr::WheelsetContact<>::History saved_;  // save_history's one slot
   bool has_saved_ = false;

@@ -61,3 +61,52 @@ def test_wheelset_models_in_threads_give_the_serial_answers():
     for one, other in zip(serial, threaded):
         assert np.array_equal(one.force_n, other.force_n)
         assert np.array_equal(one.moment_nm, other.moment_nm)
+
+
+
+# Four threads on one wheelset model, mixing evaluate with the calls that lock the model
+# without solving (history, budget, reset); run in a child process, since a deadlock between
+# the model's lock and the GIL would stop every thread of this one, the test's too.
+SHARED_MODEL_SCRIPT = """
+import threading
+import fastnorm
+
+model = fastnorm.WheelsetContact(solver="elliptic", elements=24)
+poses = [dict(lateral_shift_m=y, vertical_m=0.12e-3) for y in (-3e-3, -1e-3, 1e-3, 3e-3)]
+failures = []
+
+def work(index):
+    try:
+        for step in range(12):
+            pose = poses[(index + step) % len(poses)]
+            if step % 3 == 1:
+                model.save_history()
+                model.iteration_budget = 0
+            result = model.evaluate(**pose)
+            assert result.ok and len(result.wheels) == 2, result.status
+            if step % 3 == 2:
+                model.restore_history()
+            if step == 7 and index == 0:
+                model.reset()
+    except Exception as error:
+        failures.append(repr(error))
+
+threads = [threading.Thread(target=work, args=(index,)) for index in range(4)]
+for thread in threads:
+    thread.start()
+for thread in threads:
+    thread.join()
+assert not failures, failures
+print("done")
+"""
+
+
+def test_threads_sharing_one_wheelset_model_run_one_at_a_time():
+    # evaluate converts the model's own result while the model stays locked, taking the GIL
+    # back for the arrays; every other call releases the GIL before it waits for the lock.
+    import subprocess
+    import sys
+
+    run = subprocess.run([sys.executable, "-c", SHARED_MODEL_SCRIPT], capture_output=True, text=True, timeout=120)
+    assert run.returncode == 0, run.stderr
+    assert run.stdout.strip() == "done"
