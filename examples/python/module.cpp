@@ -381,6 +381,29 @@ std::vector<PyWheel> wheels_of(const std::vector<wr::PatchContact>& patches, con
   return wheels;
 }
 
+// A time-loop step's result, every patch's arrays copied.
+PyWheelsetResult to_python(const wr::WheelsetContactResult& result, const wr::Wheelset& wheelset) {
+  PyWheelsetResult out;
+  out.pose = result.pose;
+  for (const auto& wheel : result.wheels) {
+    PyWheel copy;
+    copy.side = wr::to_string(wheel.side);
+    for (const auto& patch : wheel.patches) copy.patches.push_back(to_python(patch, wheelset));
+    copy.force = vector3(wheel.force);
+    copy.moment = vector3(wheel.moment);
+    copy.normal_force = wheel.normal_force;
+    copy.flange_climb = wheel.flange_climb;
+    copy.status = wheel.status;
+    copy.iterations = wheel.iterations;
+    out.wheels.push_back(std::move(copy));
+  }
+  out.force = vector3(result.force);
+  out.moment = vector3(result.moment);
+  out.status = result.status;
+  out.iterations = result.iterations;
+  return out;
+}
+
 // The wheelset contact model of the time loop and the equilibrium on the same set-up.
 class PyWheelset {
  public:
@@ -396,7 +419,7 @@ class PyWheelset {
     const std::lock_guard<std::mutex> lock(calls_);
     const wr::WheelsetContactResult& result = velocity ? model_.evaluate(pose, *velocity) : model_.evaluate(pose);
     py::gil_scoped_acquire held;
-    return converted(result);
+    return to_python(result, model_.wheelset());
   }
 
   void set_iteration_budget(int iterations) {
@@ -458,28 +481,6 @@ class PyWheelset {
   }
 
  private:
-  PyWheelsetResult converted(const wr::WheelsetContactResult& result) const {
-    PyWheelsetResult out;
-    out.pose = result.pose;
-    for (const auto& wheel : result.wheels) {
-      PyWheel copy;
-      copy.side = wr::to_string(wheel.side);
-      for (const auto& patch : wheel.patches) copy.patches.push_back(to_python(patch, model_.wheelset()));
-      copy.force = vector3(wheel.force);
-      copy.moment = vector3(wheel.moment);
-      copy.normal_force = wheel.normal_force;
-      copy.flange_climb = wheel.flange_climb;
-      copy.status = wheel.status;
-      copy.iterations = wheel.iterations;
-      out.wheels.push_back(std::move(copy));
-    }
-    out.force = vector3(result.force);
-    out.moment = vector3(result.moment);
-    out.status = result.status;
-    out.iterations = result.iterations;
-    return out;
-  }
-
   wr::WheelsetContact<> model_;
   wr::WheelsetContact<>::History saved_;  // save_history's one slot
   bool has_saved_ = false;

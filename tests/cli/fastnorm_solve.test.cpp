@@ -22,9 +22,6 @@ using fastnorm::test::Outcome;
 
 Outcome run_solver(const std::string& arguments) { return fastnorm::test::run_command(FASTNORM_SOLVE_EXE, arguments); }
 
-// A scratch folder per test case, removed when it ends.
-fastnorm::test::ScratchDirectory scratch() { return fastnorm::test::ScratchDirectory("fastnorm_cli_"); }
-
 // A small sphere problem in force control, written as a case without a result.
 fs::path write_sphere_case(const fs::path& dir) {
   using fastnorm::test::steel;
@@ -41,7 +38,7 @@ fs::path write_sphere_case(const fs::path& dir) {
 }  // namespace
 
 TEST_CASE("fastnorm-solve solves a case, writes it back and compares with its result", "[cli]") {
-  const auto scratch_dir = scratch();
+  const fastnorm::test::ScratchDirectory scratch_dir("fastnorm_cli_");
   const fs::path& dir = scratch_dir.path();
   const fs::path input = write_sphere_case(dir), output = dir / "solved.case";
 
@@ -78,7 +75,7 @@ TEST_CASE("fastnorm-solve solves a case, writes it back and compares with its re
 }
 
 TEST_CASE("fastnorm-solve runs a reduced solver and compares it with full NORM", "[cli]") {
-  const auto scratch_dir = scratch();
+  const fastnorm::test::ScratchDirectory scratch_dir("fastnorm_cli_");
   const fs::path& dir = scratch_dir.path();
   const fs::path input = write_sphere_case(dir);
   const auto outcome = run_solver(input.string() + " --solver polynomial-edge:4:2 --compare");
@@ -93,7 +90,7 @@ TEST_CASE("fastnorm-solve runs a reduced solver and compares it with full NORM",
 }
 
 TEST_CASE("fastnorm-solve runs the CG solver with the contact set and force of NORM", "[cli][cg]") {
-  const auto scratch_dir = scratch();
+  const fastnorm::test::ScratchDirectory scratch_dir("fastnorm_cli_");
   const fs::path& dir = scratch_dir.path();
   const fs::path input = write_sphere_case(dir);
   const auto outcome = run_solver(input.string() + " --solver cg --compare");
@@ -106,7 +103,7 @@ TEST_CASE("fastnorm-solve runs the CG solver with the contact set and force of N
 }
 
 TEST_CASE("fastnorm-solve rejects bad input with status 2 and writes nothing", "[cli]") {
-  const auto scratch_dir = scratch();
+  const fastnorm::test::ScratchDirectory scratch_dir("fastnorm_cli_");
   const fs::path& dir = scratch_dir.path();
   const fs::path good = write_sphere_case(dir), bad = dir / "bad.case", out = dir / "out.case";
   std::ofstream(bad) << "fastnorm-case 1\nname bad\nsource test\ngrid mx 2 my 2 dx 1e-4 dy -1e-4 x0 0 y0 0\n";
@@ -131,7 +128,7 @@ TEST_CASE("fastnorm-solve rejects bad input with status 2 and writes nothing", "
 TEST_CASE("fastnorm-solve fails clearly on the issue-15 inputs", "[cli]") {
   // Each was a crash (std::bad_alloc, exit 134) or a wrong answer with a clean status (the
   // final check of an answer, E = 1e30, is tested in tests/norm/norm_solver.test.cpp).
-  const auto scratch_dir = scratch();
+  const fastnorm::test::ScratchDirectory scratch_dir("fastnorm_cli_");
   const fs::path& dir = scratch_dir.path();
   const fs::path good = write_sphere_case(dir);
   std::ifstream in(good);
@@ -173,7 +170,7 @@ TEST_CASE("fastnorm-solve reproduces a CONTACT peer case", "[cli][peer]") {
 TEST_CASE("fastnorm-solve --friction adds the steady-rolling creep forces", "[cli][tangential]") {
   // A sphere rolling towards +x: at ξ = 0.1 every element slides and Fx = −μ Fn; Coulomb's
   // law is odd, so −ξ gives the opposite forces and the same areas.
-  const auto scratch_dir = scratch();
+  const fastnorm::test::ScratchDirectory scratch_dir("fastnorm_cli_");
   const fs::path input = write_sphere_case(scratch_dir.path());
   const auto sliding = run_solver(input.string() + " --quiet --friction 0.3 --creepage-x 0.1");
   REQUIRE(sliding.status == 0);
@@ -215,7 +212,7 @@ TEST_CASE("fastnorm-solve --friction adds the steady-rolling creep forces", "[cl
 TEST_CASE("fastnorm-solve rolls a case's tangential line, and --write-case keeps it", "[cli][tangential]") {
   // The options on the plain case and the case's own line give the same answer; the options
   // replace the line; a case written after a solve with --friction holds the line.
-  const auto scratch_dir = scratch();
+  const fastnorm::test::ScratchDirectory scratch_dir("fastnorm_cli_");
   const fs::path& dir = scratch_dir.path();
   const fs::path input = write_sphere_case(dir);
   auto problem = fastnorm::read_case_file(input.string());
@@ -255,7 +252,7 @@ TEST_CASE("fastnorm-solve rolls a case's tangential line, and --write-case keeps
 TEST_CASE("fastnorm-solve --tangential strip and fastsim give the fast paths' creep forces", "[cli][tangential]") {
   // Full sliding is the fast paths' as the exact path's, Fx = −μ Fn; in partial slip they
   // differ from it by a few percent of μFn on this sphere (docs/validation.md §7).
-  const auto scratch_dir = scratch();
+  const fastnorm::test::ScratchDirectory scratch_dir("fastnorm_cli_");
   const fs::path input = write_sphere_case(scratch_dir.path());
   const auto exact = run_solver(input.string() + " --quiet --friction 0.3 --creepage-x 1e-3 --creepage-y 4e-4");
   for (const std::string method : {"strip", "fastsim"}) {

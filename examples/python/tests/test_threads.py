@@ -1,5 +1,7 @@
-"""Solves release the GIL: threads share a solver or run a model each, with the serial answers."""
+"""Solves release the GIL: threads share a solver or a wheelset model, or run a model each."""
 
+import subprocess
+import sys
 from concurrent.futures import ThreadPoolExecutor
 
 import numpy as np
@@ -63,7 +65,6 @@ def test_wheelset_models_in_threads_give_the_serial_answers():
         assert np.array_equal(one.moment_nm, other.moment_nm)
 
 
-
 # Four threads on one wheelset model, mixing evaluate with the calls that lock the model
 # without solving (history, budget, reset); run in a child process, since a deadlock between
 # the model's lock and the GIL would stop every thread of this one, the test's too.
@@ -104,9 +105,6 @@ print("done")
 def test_threads_sharing_one_wheelset_model_run_one_at_a_time():
     # evaluate converts the model's own result while the model stays locked, taking the GIL
     # back for the arrays; every other call releases the GIL before it waits for the lock.
-    import subprocess
-    import sys
-
     run = subprocess.run([sys.executable, "-c", SHARED_MODEL_SCRIPT], capture_output=True, text=True, timeout=120)
     assert run.returncode == 0, run.stderr
     assert run.stdout.strip() == "done"
