@@ -8,6 +8,12 @@
 //
 //   warm_up solver=<name> envelope_poses=<n> steps=<n> allocations=<n> allocating_steps=<n>
 //     fresh_allocations=<n> fresh_allocating_steps=<n> differing_steps=<n>
+//     alone_total_us=<t> alone_p99_us=<t>
+//
+// alone_total_us and alone_p99_us are the median and the 99th percentile of the warmed
+// model's steps (search + h + solve a wheel, as the trajectory line's total_us), from its
+// first step on: the model alone, no other model stepped between its steps, as in a time
+// loop with one model per wheelset.
 //
 // The envelope does not use the trajectory's poses. It is the rigid two-wheel contact at
 // y = −5.5 … 5.5 mm every 0.25 mm and yaw −3.5, −1.5, 0, 1.5 and 3.5 mrad, lowered by 0.07, 0.1
@@ -51,6 +57,7 @@ inline void bench_warm_up(const wr::Track& track, const wr::Wheelset& wheelset, 
   struct Run {
     long allocations = 0, allocating_steps = 0;
     std::vector<Eigen::Vector3d> forces;
+    std::vector<double> totals;  // s, per wheel per step: search + h + solve
   };
   const auto run = [&](wr::WheelsetContact<>& model) {
     Run counted;
@@ -61,6 +68,8 @@ inline void bench_warm_up(const wr::Track& track, const wr::Wheelset& wheelset, 
       counted.allocations += allocations;
       counted.allocating_steps += allocations > 0 ? 1 : 0;
       counted.forces.push_back(result.force);
+      for (const auto& wheel : result.wheels)
+        counted.totals.push_back(wheel.times.search + wheel.times.distance + wheel.times.solve);
     }
     return counted;
   };
@@ -77,10 +86,11 @@ inline void bench_warm_up(const wr::Track& track, const wr::Wheelset& wheelset, 
   for (std::size_t step = 0; step < poses.size(); ++step) differing += plain.forces[step] != after.forces[step] ? 1 : 0;
   const bool counting = fastnorm_example::allocation_count() >= 0;
   std::printf("warm_up solver=%s envelope_poses=%zu steps=%zu allocations=%ld allocating_steps=%ld fresh_allocations=%ld "
-              "fresh_allocating_steps=%ld differing_steps=%ld\n",
+              "fresh_allocating_steps=%ld differing_steps=%ld alone_total_us=%.1f alone_p99_us=%.1f\n",
               parsed.label().c_str(), envelope.size(), poses.size(), counting ? after.allocations : -1L,
               counting ? after.allocating_steps : -1L, counting ? plain.allocations : -1L,
-              counting ? plain.allocating_steps : -1L, differing);
+              counting ? plain.allocating_steps : -1L, differing, 1e6 * quantile(after.totals, 0.5),
+              1e6 * quantile(after.totals, 0.99));
   std::fflush(stdout);
 }
 
