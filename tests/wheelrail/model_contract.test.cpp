@@ -514,6 +514,44 @@ TEST_CASE("Solvers of all box sizes share the segment tables, with the answers o
                     Catch::Matchers::Contains("shared_table_box"));
 }
 
+namespace {
+
+// A copy of a model is a model of its own that shares its solvers' read-only tables
+// (docs/wheel-rail.md §9, "Models of a vehicle"): a copy of a fresh model, stepped in turn
+// with its original and with a model built on its own, answers bit for bit as both (nothing
+// one of them keeps reaches the others), and a copy made mid-run goes on as the original.
+template <typename Solver>
+void check_copies(const char* name) {
+  INFO(name);
+  const auto options = model_options(name);
+  wr::WheelsetContact<Solver> original(wr::Track(), wr::Wheelset(), options);
+  wr::WheelsetContact<Solver> copy = original;
+  wr::WheelsetContact<Solver> own(wr::Track(), wr::Wheelset(), options);
+  CHECK(copy.solver_count() == original.solver_count());
+  CHECK(copy.tables_built() == original.tables_built());
+  auto pose = pressed_pose();
+  for (double shift : {0.0, 1e-3, 3.6e-3, 3.9e-3, 4.1e-3, 5e-3, -3e-3}) {  // sizes, sets, a flange
+    pose.y = shift;
+    const wr::WheelsetContactResult expected = own.evaluate(pose);
+    check_same_patches(original.evaluate(pose), expected);
+    check_same_patches(copy.evaluate(pose), expected);
+  }
+  wr::WheelsetContact<Solver> later = original;  // the original's state after those steps
+  for (double shift : {4.2e-3, 4.4e-3, 0.5e-3}) {
+    pose.y = shift;
+    const wr::WheelsetContactResult expected = original.evaluate(pose);
+    check_same_patches(later.evaluate(pose), expected);
+  }
+}
+
+}  // namespace
+
+TEST_CASE("A copy of a model steps on its own and answers as a model built anew", "[wheelrail][model]") {
+  check_copies<fastnorm::ReducedSolver<fastnorm::EllipticBasis>>("elliptic");
+  check_copies<fastnorm::NormSolver<>>("norm");
+  check_copies<fastnorm::AnySolver<>>("polynomial-edge:4:1");
+}
+
 TEST_CASE("The same pose reached along different histories: forces within the grid's and the basis's cold bounds",
           "[wheelrail][model]") {
   // An answer depends on the committed history in two ways (docs/wheel-rail.md §9): the

@@ -7,6 +7,7 @@
 
 #include <Eigen/Core>
 #include <algorithm>
+#include <utility>
 #include <vector>
 
 namespace fastnorm {
@@ -29,8 +30,19 @@ class ScratchMatrix {
     }
     return *this;
   }
-  ScratchMatrix(ScratchMatrix&&) noexcept = default;
-  ScratchMatrix& operator=(ScratchMatrix&&) noexcept = default;
+  /// A moved-from matrix is empty (a 0 × 0 view), so that copying it copies nothing: the
+  /// defaults would leave its view's size over storage it no longer holds.
+  ScratchMatrix(ScratchMatrix&& other) noexcept
+      : rows_(std::exchange(other.rows_, 0)), cols_(std::exchange(other.cols_, 0)), values_(std::move(other.values_)) {}
+  ScratchMatrix& operator=(ScratchMatrix&& other) noexcept {
+    if (this != &other) {
+      rows_ = std::exchange(other.rows_, 0);
+      cols_ = std::exchange(other.cols_, 0);
+      values_ = std::move(other.values_);
+      other.values_.clear();
+    }
+    return *this;
+  }
   ~ScratchMatrix() = default;
 
   /// A copy of `other`'s lower triangle (its diagonal and below) into this storage, with
