@@ -40,6 +40,7 @@
 //
 // Then, for every reduced solver named (NORM and CG take milliseconds a wheel, too slow for
 // a vehicle at every step), a vehicle: four wheelsets (eight wheels) on the same trajectory,
+// the first's model and three copies of it (one set of tables, docs/wheel-rail.md §9),
 // each a quarter period (250 steps) ahead of the one before, every step all four evaluated
 // one after the other on one thread, and spread over two threads (OpenMP, one wheelset per
 // thread at a time; built without it, the line says threads=unavailable). The two vehicles
@@ -376,8 +377,10 @@ inline void bench_vehicle(const wr::Track& track, const wr::Wheelset& wheelset, 
   std::vector<Vehicle> vehicles;
   for (const int threads : thread_counts) {
     Vehicle vehicle{threads, {}, {}, 0};
-    for (int k = 0; k < wheelsets; ++k) {
-      vehicle.wheelsets.push_back(std::make_unique<wr::WheelsetContact<>>(track, wheelset, options));
+    // The first wheelset's model, and copies of it: one set of tables for the four.
+    vehicle.wheelsets.push_back(std::make_unique<wr::WheelsetContact<>>(track, wheelset, options));
+    for (int k = 1; k < wheelsets; ++k) {
+      vehicle.wheelsets.push_back(std::make_unique<wr::WheelsetContact<>>(*vehicle.wheelsets.front()));
     }
     vehicles.push_back(std::move(vehicle));
   }
