@@ -160,10 +160,14 @@ class StepAllocations {
   long before_ = 0, total_ = 0, steps_ = 0;
 };
 
+/// A wheel's normal contact in a step (s): search + h + solve, the lines' total_us.
+inline double normal_contact_seconds(const wr::WheelContact& wheel) {
+  return wheel.times.search + wheel.times.distance + wheel.times.solve;
+}
+
 /// What one solver's run records.
 struct TrajectoryRun {
   std::vector<double> search, distance, solve, tangential, total;  // s, per wheel per step
-  std::vector<bool> after_switch;  // per wheel per step: the first step of a turn (after another model's)
   std::vector<std::array<double, 2>> wheel_force;       // Σ Fn per wheel, per step
   std::vector<std::vector<fastnorm::Solution<double>>> checked;  // every 20th step: the patches' solutions
   double allocations_per_step = -1;
@@ -230,15 +234,13 @@ class TrajectoryRunner {
                    const std::vector<wr::WheelsetVelocity>& velocities, const std::string& solver)
       : poses_(poses), velocities_(velocities), contact_(track, wheelset, TrajectorySolver::parse(solver).options()) {}
 
-  /// Evaluates steps [first, end) of the poses, in order, after those before `first`;
-  /// `after_other_model`: other models ran since this one's last step (its first step here
-  /// is then recorded as a switch step).
-  void run_steps(std::size_t first, std::size_t end, bool after_other_model) {
+  /// Evaluates steps [first, end) of the poses, in order, after those before `first`.
+  void run_steps(std::size_t first, std::size_t end) {
     for (std::size_t step = first; step < end; ++step) {
       allocations_.start();  // inside evaluate only: the run's own records allocate too
       const auto& result = contact_.evaluate(poses_[step], velocities_[step]);
       allocations_.stop(step);
-      record(step, result, after_other_model && step == first);
+      record(step, result);
     }
   }
 
@@ -251,7 +253,7 @@ class TrajectoryRunner {
   }
 
  private:
-  void record(std::size_t step, const wr::WheelsetContactResult& result, bool after_switch) {
+  void record(std::size_t step, const wr::WheelsetContactResult& result) {
     std::array<double, 2> force{};
     for (std::size_t w = 0; w < 2; ++w) {
       const auto& wheel = result.wheels[w];
@@ -259,8 +261,7 @@ class TrajectoryRunner {
       run_.distance.push_back(wheel.times.distance);
       run_.solve.push_back(wheel.times.solve);
       run_.tangential.push_back(wheel.times.tangential);
-      run_.total.push_back(wheel.times.search + wheel.times.distance + wheel.times.solve);
-      run_.after_switch.push_back(after_switch);
+      run_.total.push_back(normal_contact_seconds(wheel));
       force[w] = wheel.normal_force;
       for (const auto& patch : wheel.patches) {
         iterations_ += patch.solution.iterations, ++solves_;
@@ -479,9 +480,8 @@ inline void bench_trajectory(const wr::Track& track, const wr::Wheelset& wheelse
     runner_of[s] = runners.size();
     runners.push_back(std::make_unique<TrajectoryRunner>(track, wheelset, poses, velocities, solvers[s]));
   }
-  const bool interleaved = runners.size() > 1;
   for (std::size_t first = 0; first < poses.size(); first += interleave_block) {
-    for (auto& runner : runners) runner->run_steps(first, std::min(first + interleave_block, poses.size()), interleaved);
+    for (auto& runner : runners) runner->run_steps(first, std::min(first + interleave_block, poses.size()));
   }
   std::vector<TrajectoryRun> finished;
   for (auto& runner : runners) finished.push_back(runner->finish());
@@ -501,9 +501,10 @@ inline void bench_trajectory(const wr::Track& track, const wr::Wheelset& wheelse
     const auto half = static_cast<std::ptrdiff_t>(run.total.size() / 2);
     const std::vector<double> first_half(run.total.begin(), run.total.begin() + half),
         second_half(run.total.begin() + half, run.total.end());
-    std::vector<double> switches;  // the first step of each turn
-    for (std::size_t k = 0; k < run.total.size(); ++k)
-      if (run.after_switch[k]) switches.push_back(run.total[k]);
+    std::vector<double> switches;  // the first step of each turn (two wheels a step), after other models' turns
+    for (std::size_t k = 0; runners.size() > 1 && k < run.total.size(); ++k) {
+      if ((k / 2) % interleave_block == 0) switches.push_back(run.total[k]);
+    }
     std::printf("trajectory solver=%s steps=%d search_us=%.1f h_us=%.1f solve_us=%.1f tangential_us=%.1f total_us=%.1f "
                 "total_p99_us=%.1f switch_step_us=%.1f "
                 "max_err_vs_norm=%.3e max_set_diff=%ld roughness=%.3e roughness_norm=%.3e allocations_per_step=%.2f "

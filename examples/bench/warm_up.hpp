@@ -68,8 +68,7 @@ inline void bench_warm_up(const wr::Track& track, const wr::Wheelset& wheelset, 
       counted.allocations += allocations;
       counted.allocating_steps += allocations > 0 ? 1 : 0;
       counted.forces.push_back(result.force);
-      for (const auto& wheel : result.wheels)
-        counted.totals.push_back(wheel.times.search + wheel.times.distance + wheel.times.solve);
+      for (const auto& wheel : result.wheels) counted.totals.push_back(normal_contact_seconds(wheel));
     }
     return counted;
   };
