@@ -2,9 +2,10 @@
  * agrees with CONTACT's stored solution as the C++ tests require (force 1e-7, pressures 1e-6
  * of the peak, the same contact count); a .case written and read back is unchanged; the
  * sequence call gives the cold answer; bad input returns FASTNORM_ERROR_ARGUMENT with a
- * message naming the argument; the wheelset model's equilibrium carries its load; steady
- * rolling gives CONTACT's creep forces on its large-spin Hertz example; a case's tangential
- * line is read; a contact table written by hand from its documented format is looked up.
+ * message naming the argument; the wheelset model's equilibrium carries its load, and its
+ * copies step as a model alone; steady rolling gives CONTACT's creep forces on its large-spin
+ * Hertz example; a case's tangential line is read; a contact table written by hand from its
+ * documented format is looked up.
  * Usage: fastnorm_c_api_test PEER_CASE_FILE SCRATCH_DIR */
 #include <math.h>
 #include <stdint.h>
@@ -277,6 +278,76 @@ static void wheelset_trial_steps(void) {
   printf("trial steps restored: vertical force %.10g N, as without the trials\n", tried_force[2]);
   fastnorm_wheelset_destroy(tried);
   fastnorm_wheelset_destroy(plain);
+}
+
+/* The patches of `wheel` that two models read: the same Fn and pressures, bit for bit. */
+static void expect_same_patches(const fastnorm_wheelset* model, const fastnorm_wheelset* other, int wheel) {
+  int count = -1, other_count = -2;
+  REQUIRE_OK(fastnorm_wheelset_patch_count(model, wheel, &count));
+  REQUIRE_OK(fastnorm_wheelset_patch_count(other, wheel, &other_count));
+  EXPECT(count == other_count && count >= 1);
+  for (int n = 0; n < count && n < other_count; ++n) {
+    fastnorm_patch patch, other_patch;
+    REQUIRE_OK(fastnorm_wheelset_patch(model, wheel, n, &patch));
+    REQUIRE_OK(fastnorm_wheelset_patch(other, wheel, n, &other_patch));
+    EXPECT(patch.normal_force == other_patch.normal_force);
+    const int size = patch.grid.mx * patch.grid.my;
+    EXPECT(size == other_patch.grid.mx * other_patch.grid.my);
+    double* pressure = malloc(sizeof(double) * (size_t)size);
+    double* other_pressure = malloc(sizeof(double) * (size_t)size);
+    REQUIRE_OK(fastnorm_wheelset_patch_pressure(model, wheel, n, pressure));
+    REQUIRE_OK(fastnorm_wheelset_patch_pressure(other, wheel, n, other_pressure));
+    EXPECT(memcmp(pressure, other_pressure, sizeof(double) * (size_t)size) == 0);
+    free(pressure);
+    free(other_pressure);
+  }
+}
+
+/* Copies (docs/wheel-rail.md §9, "Models of a vehicle"): a copy reads the patches of its
+ * original's last call, an equilibrium's or an evaluate's, and keeps them when the original
+ * is destroyed; it steps on from its original's history as a model that took the same calls
+ * itself, bit for bit; a missing argument is refused by name. */
+static void wheelset_copies(void) {
+  fastnorm_wheelset_options options = elliptic_on_30_elements();
+  fastnorm_wheelset *original = NULL, *after_equilibrium = NULL, *after_step = NULL, *alone = NULL;
+  REQUIRE_OK(fastnorm_wheelset_create(&options, &original));
+  REQUIRE_OK(fastnorm_wheelset_create(&options, &alone));
+  fastnorm_equilibrium found;
+  REQUIRE_OK(fastnorm_wheelset_equilibrium(original, 2e5, 1e-3, 0.0, &found));
+  REQUIRE_OK(fastnorm_wheelset_equilibrium(alone, 2e5, 1e-3, 0.0, &found));
+  REQUIRE_OK(fastnorm_wheelset_copy(original, &after_equilibrium));
+  for (int wheel = 0; wheel < 2; ++wheel) expect_same_patches(after_equilibrium, alone, wheel);
+
+  fastnorm_pose pose = found.pose;
+  double force[3], alone_force[3];
+  pose.y += 0.2e-3;
+  REQUIRE_OK(fastnorm_wheelset_evaluate(original, &pose, force, NULL));
+  REQUIRE_OK(fastnorm_wheelset_evaluate(alone, &pose, alone_force, NULL));
+  REQUIRE_OK(fastnorm_wheelset_copy(original, &after_step));
+  fastnorm_wheelset_destroy(original); /* the copies hold what they read and share */
+  for (int wheel = 0; wheel < 2; ++wheel) expect_same_patches(after_step, alone, wheel);
+
+  /* The equilibrium's copy takes the step the others took; then all three step on alike. */
+  double copy_force[3];
+  REQUIRE_OK(fastnorm_wheelset_evaluate(after_equilibrium, &pose, copy_force, NULL));
+  for (int c = 0; c < 3; ++c) EXPECT(copy_force[c] == alone_force[c]);
+  for (int step = 2; step <= 3; ++step) {
+    pose.y += 0.2e-3;
+    pose.yaw = 1e-3 * step;
+    REQUIRE_OK(fastnorm_wheelset_evaluate(alone, &pose, alone_force, NULL));
+    REQUIRE_OK(fastnorm_wheelset_evaluate(after_step, &pose, force, NULL));
+    REQUIRE_OK(fastnorm_wheelset_evaluate(after_equilibrium, &pose, copy_force, NULL));
+    for (int c = 0; c < 3; ++c) EXPECT(force[c] == alone_force[c] && copy_force[c] == alone_force[c]);
+  }
+  printf("copies step as a model alone: vertical force %.10g N\n", force[2]);
+
+  fastnorm_wheelset* unused = NULL;
+  expect_error(fastnorm_wheelset_copy(NULL, &unused), "model");
+  EXPECT(unused == NULL);
+  expect_error(fastnorm_wheelset_copy(alone, NULL), "copy");
+  fastnorm_wheelset_destroy(after_equilibrium);
+  fastnorm_wheelset_destroy(after_step);
+  fastnorm_wheelset_destroy(alone);
 }
 
 /* Creep forces in the time loop (docs/wheel-rail.md §10): a rolling wheelset with a yaw
@@ -557,6 +628,7 @@ int main(int argc, char** argv) {
   bad_input_is_named();
   wheelset_equilibrium_and_time_step();
   wheelset_trial_steps();
+  wheelset_copies();
   wheelset_creep_forces();
   steady_rolling_meets_contact();
   case_rolling_is_read(argv[2]);

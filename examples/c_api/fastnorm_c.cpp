@@ -10,9 +10,11 @@
 #include <fastnorm/version.hpp>
 #include <fastnorm/wheelrail.hpp>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <new>
 #include <optional>
 #include <stdexcept>
@@ -467,6 +469,32 @@ int fastnorm_wheelset_create(const fastnorm_wheelset_options* options, fastnorm_
 }
 
 void fastnorm_wheelset_destroy(fastnorm_wheelset* model) { delete model; }
+
+int fastnorm_wheelset_copy(const fastnorm_wheelset* model, fastnorm_wheelset** copy) {
+  return guarded("fastnorm_wheelset_copy", [&] {
+    require_pointer(model, "model");
+    require_pointer(copy, "copy");
+    *copy = nullptr;
+    auto made = std::make_unique<fastnorm_wheelset>(*model);
+    // The copied patch pointers still point into model: point them at the same patches of
+    // the copy's own equilibrium, or else of its last evaluate's result (in whose order
+    // evaluate_into lists them).
+    for (std::size_t wheel = 0; wheel < 2; ++wheel) {
+      auto& patches = made->patches[wheel];
+      for (std::size_t k = 0; k < patches.size(); ++k) {
+        if (made->equilibrium) {
+          const auto& from = model->equilibrium->patches;
+          const auto at = std::find_if(from.begin(), from.end(), [&](const auto& patch) { return &patch == patches[k]; });
+          FASTNORM_ASSERT(at != from.end());  // after an equilibrium, every patch is one of its
+          patches[k] = &made->equilibrium->patches[static_cast<std::size_t>(at - from.begin())];
+        } else {
+          patches[k] = &made->model.result().wheels[wheel].patches[k];
+        }
+      }
+    }
+    *copy = made.release();
+  });
+}
 
 namespace {
 

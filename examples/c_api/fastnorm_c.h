@@ -284,6 +284,13 @@ typedef struct fastnorm_wheelset fastnorm_wheelset;
 
 FASTNORM_C_API int fastnorm_wheelset_create(const fastnorm_wheelset_options* options, fastnorm_wheelset** model);
 FASTNORM_C_API void fastnorm_wheelset_destroy(fastnorm_wheelset* model);
+/* A model of its own (*copy, to destroy as any) that answers as model would: its patches,
+ * history, saved history and budget copied, the patches of model's last call readable in it.
+ * It shares model's solvers' read-only tables (influence and segment tables), so the copies
+ * of one model hold them once: the way to make the wheelset models of a vehicle
+ * (docs/wheel-rail.md §9, "Models of a vehicle"). A model and its copies may be evaluated on
+ * different threads at once; each one by one thread at a time, as any model. */
+FASTNORM_C_API int fastnorm_wheelset_copy(const fastnorm_wheelset* model, fastnorm_wheelset** copy);
 /* Evaluates every wheel's contact at pose; force[3] and moment[3] (may be NULL) receive the
  * totals on the wheelset (N, N m about its centre). The patches stay readable until the
  * next evaluate. FASTNORM_ERROR_PATCH_FAILED when a patch solve gave no usable answer. */

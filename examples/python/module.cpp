@@ -20,6 +20,7 @@
 #include <cstdint>
 #include <array>
 #include <cmath>
+#include <memory>
 #include <mutex>
 #include <optional>
 #include <string>
@@ -480,7 +481,19 @@ class PyWheelset {
     model_.restore(saved_);
   }
 
+  // A model of its own sharing this one's read-only tables (WheelsetContact's copy), taken
+  // while this one is locked.
+  std::unique_ptr<PyWheelset> copy() {
+    py::gil_scoped_release released;
+    const std::lock_guard<std::mutex> lock(calls_);
+    return std::unique_ptr<PyWheelset>(new PyWheelset(*this));
+  }
+
  private:
+  // The model, its saved history and whether it has one; a lock of its own. Only copy()
+  // calls it, with `other` locked.
+  PyWheelset(const PyWheelset& other) : model_(other.model_), saved_(other.saved_), has_saved_(other.has_saved_) {}
+
   wr::WheelsetContact<> model_;
   wr::WheelsetContact<>::History saved_;  // save_history's one slot
   bool has_saved_ = false;
@@ -936,6 +949,15 @@ void bind_wheelset(py::module_& m) {
       .def("restore_history", &PyWheelset::restore_history,
            "Back to the saved history: the next evaluate gives, bit for bit, what it would have given right "
            "after save_history, whatever was evaluated since. ValueError if nothing was saved.")
+      .def("copy", &PyWheelset::copy,
+           "A model of its own that answers as this one would (its patches, history, saved history and "
+           "iteration budget copied) and shares this one's read-only tables, so that the copies of one model "
+           "hold them once: the way to make the wheelset models of a vehicle (docs/wheel-rail.md §9, "
+           "'Models of a vehicle'). A model and its copies may be evaluated on different threads at once.")
+      .def("__copy__", &PyWheelset::copy, "copy.copy(model): model.copy()")
+      .def(
+          "__deepcopy__", [](PyWheelset& model, const py::dict&) { return model.copy(); }, "memo"_a,
+          "copy.deepcopy(model): model.copy(), whose shared tables are never written")
       .def_property("iteration_budget", &PyWheelset::iteration_budget, &PyWheelset::set_iteration_budget,
                     "the most solver iterations an evaluate may spend over its patch solves, in order, each at "
                     "least one (docs/wheel-rail.md §9); a solve cut short ends at 'iteration limit' and the "

@@ -1,5 +1,7 @@
 """The wheelset contact model and the equilibrium through the module."""
 
+import copy
+
 import numpy as np
 import pytest
 
@@ -255,3 +257,33 @@ def test_trial_steps_restored_give_the_untried_models_answers():
         for wheel, reference in zip(result.wheels, expected.wheels):
             for patch, other in zip(wheel.patches, reference.patches):
                 assert np.array_equal(patch.solution.pressure_pa, other.solution.pressure_pa)
+
+
+def test_copies_step_on_their_own_as_models_that_took_the_same_calls():
+    # docs/wheel-rail.md §9, "Models of a vehicle": a copy shares its original's tables, not its state.
+    original = fastnorm.WheelsetContact(solver="elliptic", elements=20)
+    alone = fastnorm.WheelsetContact(solver="elliptic", elements=20)
+    start = [model.equilibrium(load_n=2e5, lateral_shift_m=1e-3).pose for model in (original, alone)][0]
+    original.iteration_budget = 1000
+    alone.iteration_budget = 1000
+    original.save_history()
+    copies = [original.copy(), copy.copy(original), copy.deepcopy(original)]
+    assert all(repr(made) == repr(original) and made.iteration_budget == 1000 for made in copies)
+    # The original moves far off first: its copies answer from the history they were made with.
+    original.evaluate(fastnorm.Pose(lateral_shift_m=start.lateral_shift_m + 2e-3, vertical_m=start.vertical_m,
+                                    roll_rad=start.roll_rad))
+    poses = [fastnorm.Pose(lateral_shift_m=start.lateral_shift_m + 0.3e-3 * step, vertical_m=start.vertical_m,
+                           roll_rad=start.roll_rad, yaw_rad=1e-3 * step) for step in range(1, 4)]
+    expected = [alone.evaluate(pose) for pose in poses]
+    for made in copies:
+        for pose, reference_result in zip(poses, expected):
+            result = made.evaluate(pose)
+            assert result.ok and np.array_equal(result.force_n, reference_result.force_n)
+            for wheel, reference in zip(result.wheels, reference_result.wheels):
+                assert len(wheel.patches) == len(reference.patches)
+                for patch, other in zip(wheel.patches, reference.patches):
+                    assert np.array_equal(patch.solution.pressure_pa, other.solution.pressure_pa)
+    # The saved history came with them: back to the equilibrium, the first step again.
+    for made in copies:
+        made.restore_history()
+        assert np.array_equal(made.evaluate(poses[0]).force_n, expected[0].force_n)

@@ -148,6 +148,10 @@ class WheelsetContact {
     return evaluate_both(pose, &velocity);
   }
 
+  /// The result of the last evaluate, as it returned it (a single wheel's evaluate updates that
+  /// wheel only); before the first, empty. Valid until the next call.
+  const WheelsetContactResult& result() const { return result_; }
+
   /// Contact of the wheel of `side` only, at `pose` (CONTACT's single-wheel mode); the other
   /// wheel's state is kept for a later call, and the wheelset's sums are not updated. The
   /// result stays valid until the next call.
