@@ -237,6 +237,11 @@ module fastnorm_c
       import :: c_ptr
       type(c_ptr), value :: model
     end subroutine
+    integer(c_int) function fastnorm_wheelset_copy(model, copy) bind(c)
+      import :: c_int, c_ptr
+      type(c_ptr), value :: model
+      type(c_ptr), intent(out) :: copy
+    end function
     integer(c_int) function fastnorm_wheelset_evaluate(model, pose, force, moment) bind(c)
       import :: c_int, c_ptr, c_double, fastnorm_pose
       type(c_ptr), value :: model
