@@ -200,7 +200,8 @@ typedef struct fastnorm_wheelset_options {
                                  item 8) */
   int warm_solve_iterations;  /* the most iterations of each warm-started patch solve in an evaluate
                                  (FASTNORM_BUDGET_REACHED at the cap, continued at the next); cold
-                                 solves uncapped; 0 (default): none (docs/wheel-rail.md §9) */
+                                 solves uncapped; 0 (default): none; only for motion slow against
+                                 the grid, a fraction of an element a step (docs/wheel-rail.md §9) */
   double tolerance;           /* of each patch solve, as in fastnorm_solver_options (CG only); 0: the default */
   double gap_tolerance;       /* of each patch solve, as in fastnorm_solver_options (not CG); 0: the default */
   double distance_node_spacing; /* distance between the exact nodes of h along a row (m, default 4e-3, > 0;

@@ -904,7 +904,8 @@ void bind_wheelset(py::module_& m) {
                          "Coulomb's mu of every patch, for creep forces when evaluate is given a Velocity; "
                          "creep_method: 'strip_theory' (default) or 'fastsim'. warm_solve_iterations: the most "
                          "iterations of each warm-started patch solve in an evaluate (status 'budget reached' at the "
-                         "cap, continued at the next evaluate; cold solves uncapped; 0: none). max_iterations, "
+                         "cap, continued at the next evaluate; cold solves uncapped; 0: none; only for motion slow "
+                         "against the grid, a fraction of an element a step: docs/wheel-rail.md §9). max_iterations, "
                          "tolerance and gap_tolerance: each patch solver's, as for Solver. "
                          "Calls on one model run one at a time.")
       .def(py::init(&make_wheelset), py::kw_only(), "solver"_a = "norm", "elements"_a = 60,

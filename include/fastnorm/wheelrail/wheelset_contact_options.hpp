@@ -103,6 +103,10 @@ struct WheelsetContactOptions {
   /// iterate waits for the next one (WarmStart::cap_iterations), so a capped solve never
   /// fails for the cap. A cold solve (a patch's first step, after reset, a cold start) is
   /// not capped, so a model evaluated once answers converged. 0 (default): no cap.
+  /// A capped answer trails the motion: only for motion slow against the grid (a fraction
+  /// of an element a step). Where a step moves a patch by several elements the force errors
+  /// grow far beyond the basis's (16 % at 40 times the benchmark's speed, whatever the cap
+  /// from 1 to 6: docs/performance.md §8).
   int warm_solve_iterations = 0;
   bool stiffness = true;  ///< compute each patch's dFn/dδ (one extra solve with the last factor)
   CreepOptions creep;     ///< creep forces, when evaluate is given velocities
