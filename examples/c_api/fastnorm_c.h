@@ -198,10 +198,10 @@ typedef struct fastnorm_wheelset_options {
   int distance_everywhere;    /* 1: h on every element of a patch's grid; 0 (default): only where an
                                  element can interpenetrate, 1e-3 m elsewhere (docs/wheel-rail.md §4,
                                  item 8) */
-  int warm_solve_iterations;  /* the most iterations of each warm-started patch solve in an evaluate
-                                 (FASTNORM_BUDGET_REACHED at the cap, continued at the next); cold
-                                 solves uncapped; 0 (default): none; only for motion slow against
-                                 the grid, a fraction of an element a step (docs/wheel-rail.md §9) */
+  int warm_solve_iterations;  /* the iterations after which each warm-started patch solve in an
+                                 evaluate stops at its first settled iterate (FASTNORM_BUDGET_REACHED,
+                                 continued at the next); cold solves uncapped; 0 (default): none
+                                 (docs/wheel-rail.md §9) */
   double tolerance;           /* of each patch solve, as in fastnorm_solver_options (CG only); 0: the default */
   double gap_tolerance;       /* of each patch solve, as in fastnorm_solver_options (not CG); 0: the default */
   double distance_node_spacing; /* distance between the exact nodes of h along a row (m, default 4e-3, > 0;

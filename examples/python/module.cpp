@@ -902,10 +902,10 @@ void bind_wheelset(py::module_& m) {
                          "distance_everywhere: h on every element of a patch's grid "
                          "(default: only where an element can interpenetrate, 1e-3 m elsewhere). friction: "
                          "Coulomb's mu of every patch, for creep forces when evaluate is given a Velocity; "
-                         "creep_method: 'strip_theory' (default) or 'fastsim'. warm_solve_iterations: the most "
-                         "iterations of each warm-started patch solve in an evaluate (status 'budget reached' at the "
-                         "cap, continued at the next evaluate; cold solves uncapped; 0: none; only for motion slow "
-                         "against the grid, a fraction of an element a step: docs/wheel-rail.md §9). max_iterations, "
+                         "creep_method: 'strip_theory' (default) or 'fastsim'. warm_solve_iterations: the iterations "
+                         "after which each warm-started patch solve in an evaluate stops at its first settled iterate "
+                         "(status 'budget reached', continued at the next evaluate; cold solves uncapped; 0: none; "
+                         "docs/wheel-rail.md §9). max_iterations, "
                          "tolerance and gap_tolerance: each patch solver's, as for Solver. "
                          "Calls on one model run one at a time.")
       .def(py::init(&make_wheelset), py::kw_only(), "solver"_a = "norm", "elements"_a = 60,

@@ -16,8 +16,14 @@ namespace fastnorm {
 /// and its workspace's limits (WarmStart::stop).
 struct IterationStop {
   int hard = 0;         ///< no solve takes more iterations
-  int soft = 0;         ///< ≤ hard: an active-set solve stops here at an admissible iterate
+  int soft = 0;         ///< ≤ hard: an active-set solve may stop here at a settled iterate
   bool budget = false;  ///< a stop at an admissible iterate is a caller's (Status::budget_reached)
+  /// A settled iterate, where an active-set solve past `soft` stops: all its pressures
+  /// positive, and no element outside its set interpenetrating by more than this fraction of
+  /// the deepest interpenetration (its join check's residual). Beyond it the answer would
+  /// trail a moving contact by whole elements (docs/performance.md §8, "A cap that waits for
+  /// a settled iterate").
+  static constexpr double settled_residual = 1e-2;
 };
 
 /// The starting state a workspace hands to its next solve: a contact set and, where the
@@ -67,10 +73,12 @@ class WarmStart {
   }
   /// A softer bound below the limit (a time loop's cap per solve,
   /// WheelsetContactOptions::warm_solve_iterations): an active-set solve stops after `cap`
-  /// iterations at its last admissible iterate, Status::budget_reached, as at the limit;
-  /// but a stop that would come after a drop before any admissible iterate waits for the
-  /// next one (within the limit and max_iterations), so that the answer is usable. CG,
-  /// whose every iterate is admissible, stops at the cap. 0: none. clear() keeps it.
+  /// iterations at the first settled iterate (IterationStop::settled_residual: its
+  /// pressures all positive, its gaps violated by at most a hundredth of the deepest
+  /// interpenetration), Status::budget_reached; until one comes it goes on (within the
+  /// limit and max_iterations), so that the answer is usable and does not trail a moving
+  /// contact. CG, whose every iterate is admissible, stops at the cap. 0: none. clear()
+  /// keeps it.
   int iteration_cap() const { return iteration_cap_; }
   /// @throws fastnorm::invalid_argument for a negative cap
   void cap_iterations(int cap) {

@@ -228,10 +228,13 @@ def test_a_per_solve_cap_bounds_warm_solves_only():
     capped = fastnorm.WheelsetContact(solver="elliptic", elements=20, warm_solve_iterations=1)
     first = capped.evaluate(pose)  # cold: not capped, the free model's answer
     assert first.ok and first.iterations == free.iterations
-    moved = fastnorm.Pose(lateral_shift_m=pose.lateral_shift_m + 0.3e-3, vertical_m=pose.vertical_m)
-    step = capped.evaluate(moved)  # warm: stopped at the cap's first admissible iterate, or converged
-    assert step.ok
-    statuses = {patch.solution.status for wheel in step.wheels for patch in wheel.patches}
+    # Warm steps of 20 um: each stopped at the cap's first settled iterate, or converged.
+    statuses = set()
+    for step in range(1, 31):
+        moved = fastnorm.Pose(lateral_shift_m=pose.lateral_shift_m + 20e-6 * step, vertical_m=pose.vertical_m)
+        result = capped.evaluate(moved)
+        assert result.ok
+        statuses |= {patch.solution.status for wheel in result.wheels for patch in wheel.patches}
     assert statuses <= {"budget reached", "converged"} and "budget reached" in statuses
     with pytest.raises(ValueError, match="warm_solve_iterations must be >= 0"):
         fastnorm.WheelsetContact(solver="elliptic", elements=20, warm_solve_iterations=-1)

@@ -118,10 +118,11 @@ class ActiveSetLoop {
   /// taken (the sets, not the cycle check's memory of them), so that a solve limited to a
   /// few iterations a time step and continued at the next is the loop continued across
   /// steps, not restarted (docs/wheel-rail.md §9, the iteration budget). `stop`: a run
-  /// stops after stop.soft iterations once one of its iterates had all pressures positive
-  /// (admissible), and after stop.hard in any case; with stop.budget a stop at an admissible
-  /// iterate answers with the last such iterate, Status::budget_reached, and any other stop
-  /// with the clipped last iterate, Status::iteration_limit.
+  /// stops after stop.soft iterations at an iterate whose pressures are all positive and
+  /// whose join check's residual is at most IterationStop::settled_residual, and after
+  /// stop.hard in any case; with stop.budget a stop once an iterate had all pressures
+  /// positive (admissible) answers with the last such iterate, Status::budget_reached, and
+  /// any other stop with the clipped last iterate, Status::iteration_limit.
   Solution<Scalar> run(const std::vector<Index>& start_set, const IterationStop& stop) {
     const Index n_all = influence_.grid().size();
     solution_ = std::move(work_.spare_solution);
@@ -157,7 +158,7 @@ class ActiveSetLoop {
       ++solution_.iterations;
       if (!solve_on_set()) return finish(Status::numerical_issue, "factorisation of the system on the active set failed");
       if (drop_non_positive()) {
-        if (solution_.iterations >= stop.hard || (solution_.iterations >= stop.soft && !work_.admissible_set.empty())) {
+        if (solution_.iterations >= stop.hard) {
           work_.next_set = work_.kept;
           break;
         }
@@ -170,7 +171,8 @@ class ActiveSetLoop {
         store(work_.active, work_.columns.view().data(), approach_);
         return finish(Status::converged, "contact set stable");
       }
-      if (solution_.iterations >= stop.soft) {  // report this iterate
+      const bool settled = residual_ <= Scalar(IterationStop::settled_residual);
+      if (solution_.iterations >= stop.hard || (solution_.iterations >= stop.soft && settled)) {  // report it
         merge_joining(work_.next_set);
         break;
       }

@@ -96,17 +96,16 @@ struct WheelsetContactOptions {
     return shared_table_box > 0 ? shared_table_box : (3 * grid.elements / 2 + 7) / 8 * 8;
   }
   /// The iterations (active-set iterations; CG's for CG) after which a warm-started patch
-  /// solve stops in one evaluate, as a real-time iteration: it answers with its last
-  /// iterate whose pressures are all positive, Status::budget_reached (usable: forces,
-  /// stiffness and creep forces as for a converged one), and goes on at the next evaluate
-  /// from where it stopped (docs/wheel-rail.md §9). A stop due after a drop before any such
-  /// iterate waits for the next one (WarmStart::cap_iterations), so a capped solve never
-  /// fails for the cap. A cold solve (a patch's first step, after reset, a cold start) is
+  /// solve may stop in one evaluate, as a real-time iteration. An active-set solve stops at
+  /// its first settled iterate after them (pressures all positive, gaps violated by at most a
+  /// hundredth of the deepest interpenetration: IterationStop::settled_residual) with
+  /// Status::budget_reached (usable: forces, stiffness and creep forces as for a converged
+  /// one), and goes on at the next evaluate from where it stopped (docs/wheel-rail.md §9).
+  /// Until such an iterate comes it goes on, so a capped solve never fails for the cap and
+  /// does not trail a fast-moving contact (a stop at any admissible iterate, as before
+  /// 2026-12-08, erred by 16 % at 40 times the benchmark's speed: docs/performance.md §8).
+  /// CG stops at the cap. A cold solve (a patch's first step, after reset, a cold start) is
   /// not capped, so a model evaluated once answers converged. 0 (default): no cap.
-  /// A capped answer trails the motion: only for motion slow against the grid (a fraction
-  /// of an element a step). Where a step moves a patch by several elements the force errors
-  /// grow far beyond the basis's (16 % at 40 times the benchmark's speed, whatever the cap
-  /// from 1 to 6: docs/performance.md §8).
   int warm_solve_iterations = 0;
   bool stiffness = true;  ///< compute each patch's dFn/dδ (one extra solve with the last factor)
   CreepOptions creep;     ///< creep forces, when evaluate is given velocities
