@@ -10,7 +10,6 @@
 #include <fastnorm/version.hpp>
 #include <fastnorm/wheelrail.hpp>
 
-#include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
@@ -476,21 +475,12 @@ int fastnorm_wheelset_copy(const fastnorm_wheelset* model, fastnorm_wheelset** c
     require_pointer(copy, "copy");
     *copy = nullptr;
     auto made = std::make_unique<fastnorm_wheelset>(*model);
-    // The copied patch pointers still point into model: point them at the same patches of
-    // the copy's own equilibrium, or else of its last evaluate's result (in whose order
-    // evaluate_into lists them).
+    // The copied patch pointers still point into model's equilibrium, or else its last
+    // evaluate's result: point them at the same places of the copy's own.
     for (std::size_t wheel = 0; wheel < 2; ++wheel) {
-      auto& patches = made->patches[wheel];
-      for (std::size_t k = 0; k < patches.size(); ++k) {
-        if (made->equilibrium) {
-          const auto& from = model->equilibrium->patches;
-          const auto at = std::find_if(from.begin(), from.end(), [&](const auto& patch) { return &patch == patches[k]; });
-          FASTNORM_ASSERT(at != from.end());  // after an equilibrium, every patch is one of its
-          patches[k] = &made->equilibrium->patches[static_cast<std::size_t>(at - from.begin())];
-        } else {
-          patches[k] = &made->model.result().wheels[wheel].patches[k];
-        }
-      }
+      const auto& from = model->equilibrium ? model->equilibrium->patches : model->model.result().wheels[wheel].patches;
+      const auto& to = made->equilibrium ? made->equilibrium->patches : made->model.result().wheels[wheel].patches;
+      for (auto& patch : made->patches[wheel]) patch = &to[static_cast<std::size_t>(patch - from.data())];
     }
     *copy = made.release();
   });

@@ -171,8 +171,9 @@ class ActiveSetLoop {
         store(work_.active, work_.columns.view().data(), approach_);
         return finish(Status::converged, "contact set stable");
       }
-      const bool settled = residual_ <= Scalar(IterationStop::settled_residual);
-      if (solution_.iterations >= stop.hard || (solution_.iterations >= stop.soft && settled)) {  // report it
+      const bool settled_stop =
+          solution_.iterations >= stop.soft && residual_ <= Scalar(IterationStop::settled_residual);
+      if (solution_.iterations >= stop.hard || settled_stop) {  // report this iterate
         merge_joining(work_.next_set);
         break;
       }
